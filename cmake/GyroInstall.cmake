@@ -1,0 +1,16 @@
+# Installs the headers and a CMake package: find_package(gyro CONFIG REQUIRED).
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+install(TARGETS gyro_component gyro_port gyro_hil_stub EXPORT gyroTargets)
+install(DIRECTORY component/include/ port/include/ hil_stub/include/
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT gyroTargets NAMESPACE gyro:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gyro)
+configure_package_config_file(cmake/gyroConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/gyroConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gyro)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/gyroConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion ARCH_INDEPENDENT)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/gyroConfig.cmake
+              ${CMAKE_CURRENT_BINARY_DIR}/gyroConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gyro)

@@ -1,0 +1,16 @@
+# Warnings for our own targets only (toolchain files set the CPU, never policy).
+# -Wdouble-promotion keeps float code float: a single-precision FPU has no double unit.
+add_library(gyro_warnings INTERFACE)
+target_compile_options(gyro_warnings INTERFACE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion
+    -Wsign-conversion -Wdouble-promotion -Wcast-align -Wnon-virtual-dtor
+    -Wold-style-cast -Wnull-dereference>)
+option(GYRO_WERROR "Treat warnings as errors" ON)
+if(GYRO_WERROR)
+  target_compile_options(gyro_warnings INTERFACE $<$<CXX_COMPILER_ID:GNU,Clang>:-Werror>)
+endif()
+
+# The flight rules: no exceptions, no RTTI (applied to code that must honour them).
+add_library(gyro_flight_rules INTERFACE)
+target_compile_options(gyro_flight_rules INTERFACE
+  $<$<CXX_COMPILER_ID:GNU,Clang>:-fno-exceptions -fno-rtti>)

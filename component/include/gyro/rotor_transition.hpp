@@ -1,0 +1,236 @@
+// The exact discretisation of the rotor over one step with constant torque: the matrix
+// exponential of eqs 1a/1b plus theta' = w1, psi' = w2, in closed form for every regime.
+//
+// With A the 2x2 rate matrix and J = diag(J1, J2), over a step dt:
+//   w(dt)     = E0 w0 + E1 J^-1 T,          E0 = exp(A dt)
+//   angle(dt) = angle0 + E1 w0 + E2 J^-1 T, E1 = int_0^dt exp(A s) ds,
+//                                           E2 = int_0^dt (dt - s) exp(A s) ds.
+// Each is g(A dt) = M I + D (N dt) for the scalar functions g = exp, phi1, phi2 of the two
+// eigenvalues z = -a +- sqrt(-b) of A dt (a = alpha dt, b = beta^2 dt^2), evaluated:
+//   |z| <= 1              a Taylor series of fixed length (no division at all);
+//   overdamped, separated eigenvalue-by-eigenvalue (real, distinct: no cancellation);
+//   otherwise             closed form, phi1 = (At)^-1 (exp(At) - I), phi2 likewise, where
+//                         |At| > 1 keeps the subtraction and the inverse well conditioned.
+// Nothing divides by beta or H, so critical damping, overdamping, H = 0 and f = 0 are
+// ordinary cases, and beta*dt of 1e5 rad costs the same as 1e-3.
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include "gyro/rotor_parameters.hpp"
+
+namespace gyro {
+
+// theta, psi in the inertial small-angle frame (ISAF) and their rates.
+template <typename T>
+struct RotorState {
+  Vector2<T> angle_rad{Vector2<T>::Zero()};   // (theta, psi)
+  Vector2<T> rate_rad_s{Vector2<T>::Zero()};  // (w1, w2) = (theta', psi')
+};
+
+// The step's transition, applied as four 2x2 products per tick.
+template <typename T>
+struct RotorTransition {
+  Matrix2<T> rate_from_rate{Matrix2<T>::Identity()};     // E0
+  Matrix2<T> angle_from_rate{Matrix2<T>::Zero()};        // E1
+  Matrix2<T> rate_from_torque{Matrix2<T>::Zero()};       // E1 J^-1
+  Matrix2<T> angle_from_torque{Matrix2<T>::Zero()};      // E2 J^-1
+  T dt_s{};
+};
+
+namespace detail {
+
+// Coefficients (M, D) of g(At) = M I + D (N t) for g = exp, phi1, phi2.
+template <typename T>
+struct PhiCoefficients {
+  T m0, d0, m1, d1, m2, d2;
+};
+
+template <typename T>
+constexpr std::array<T, 24> inverse_factorials() noexcept {
+  std::array<T, 24> r{};
+  double fact = 1.0;  // k! is exact in double up to 22!
+  for (int k = 0; k < 24; ++k) {
+    if (k > 0) fact *= static_cast<double>(k);
+    r[static_cast<std::size_t>(k)] = static_cast<T>(1.0 / fact);
+  }
+  return r;
+}
+
+// |z| <= 1: (At)^k = v_k I + u_k (Nt), with v, u following the eigenvalues' recurrence
+// x_{k+1} = -2a x_k - w2t2 x_{k-1}. Bounded by k |z|^(k-1): no cancellation to fear.
+template <typename T>
+[[nodiscard]] PhiCoefficients<T> phi_series(T a, T w2t2) noexcept {
+  constexpr std::array<T, 24> inv_fact = inverse_factorials<T>();
+  constexpr int kTerms = ScalarTraits<T>::kSeriesTerms;
+  T v_prev = T(1), v = -a;  // v_0, v_1
+  T u_prev = T(0), u = T(1);
+  PhiCoefficients<T> c{inv_fact[0], T(0), inv_fact[1], T(0), inv_fact[2], T(0)};
+  for (int k = 1; k <= kTerms; ++k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    c.m0 += inv_fact[i] * v;
+    c.d0 += inv_fact[i] * u;
+    c.m1 += inv_fact[i + 1] * v;
+    c.d1 += inv_fact[i + 1] * u;
+    c.m2 += inv_fact[i + 2] * v;
+    c.d2 += inv_fact[i + 2] * u;
+    const T v_next = T(-2) * a * v - w2t2 * v_prev;
+    const T u_next = T(-2) * a * u - w2t2 * u_prev;
+    v_prev = v;
+    v = v_next;
+    u_prev = u;
+    u = u_next;
+  }
+  return c;
+}
+
+// phi1(x) = (e^x - 1)/x and phi2(x) = (e^x - 1 - x)/x^2 for real x <= 0.
+template <typename T>
+void phi_real(T x, T& e, T& phi1, T& phi2) noexcept {
+  e = std::exp(x);
+  if (x >= T(-1)) {  // series: the closed forms cancel near 0
+    constexpr std::array<T, 24> inv_fact = inverse_factorials<T>();
+    constexpr int kTerms = ScalarTraits<T>::kSeriesTerms;
+    T s1 = T(0), s2 = T(0);
+    for (int k = kTerms; k >= 0; --k) {  // Horner
+      s1 = s1 * x + inv_fact[static_cast<std::size_t>(k + 1)];
+      s2 = s2 * x + inv_fact[static_cast<std::size_t>(k + 2)];
+    }
+    phi1 = s1;
+    phi2 = s2;
+  } else {
+    phi1 = std::expm1(x) / x;
+    phi2 = (phi1 - T(1)) / x;
+  }
+}
+
+// sin(x)/x; exact to rounding for every x (sin is computed to relative accuracy).
+template <typename T>
+[[nodiscard]] T sinc(T x) noexcept {
+  return (x == T(0)) ? T(1) : std::sin(x) / x;
+}
+template <typename T>
+[[nodiscard]] T sinhc(T x) noexcept {
+  return (x == T(0)) ? T(1) : std::sinh(x) / x;
+}
+
+// |At| > 1 and the eigenvalues not stiffly separated: phi_{k+1}(At) = (At)^-1 (phi_k(At) - I/k!)
+// with (At)^-1 = -(Nt + aI)/w2t2 and (Nt)^2 = -b I.
+template <typename T>
+void phi_by_inverse(T a, T b, T w2t2, PhiCoefficients<T>& c) noexcept {
+  c.m1 = (a * (T(1) - c.m0) + b * c.d0) / w2t2;
+  c.d1 = ((T(1) - c.m0) - a * c.d0) / w2t2;
+  c.m2 = (a * (T(1) - c.m1) + b * c.d1) / w2t2;
+  c.d2 = ((T(1) - c.m1) - a * c.d1) / w2t2;
+}
+
+template <typename T>
+[[nodiscard]] PhiCoefficients<T> phi_coefficients(T a, T b, T w2t2) noexcept {
+  PhiCoefficients<T> c{};
+  if (b >= T(0)) {  // under- or critically damped: |z| = omega0 t
+    if (w2t2 <= T(1)) return phi_series(a, w2t2);
+    const T sb = std::sqrt(b);
+    const T ea = std::exp(-a);
+    c.m0 = ea * std::cos(sb);
+    c.d0 = ea * sinc(sb);
+    phi_by_inverse(a, b, w2t2, c);
+    return c;
+  }
+  const T g = std::sqrt(-b);  // overdamped: eigenvalues -a + g (slow) and -a - g (fast)
+  if (a + g <= T(1)) return phi_series(a, w2t2);
+  if (T(4) * g >= a) {
+    // Well separated real eigenvalues: divided differences without cancellation.
+    const T mu_slow = -w2t2 / (a + g);  // -a + g without cancellation
+    const T mu_fast = -(a + g);
+    T e_s, p1_s, p2_s, e_f, p1_f, p2_f;
+    phi_real(mu_slow, e_s, p1_s, p2_s);
+    phi_real(mu_fast, e_f, p1_f, p2_f);
+    const T inv_2g = T(1) / (T(2) * g);
+    c.m0 = (e_s + e_f) / T(2);
+    c.d0 = (e_s - e_f) * inv_2g;
+    c.m1 = (p1_s + p1_f) / T(2);
+    c.d1 = (p1_s - p1_f) * inv_2g;
+    c.m2 = (p2_s + p2_f) / T(2);
+    c.d2 = (p2_s - p2_f) * inv_2g;
+    return c;
+  }
+  // Near critical from above (g < a/4, a > 0.8): e^-a cosh g and e^-a sinh(g)/g without
+  // overflow, then the closed form.
+  const T e_s = std::exp(g - a), e_f = std::exp(-g - a);
+  c.m0 = (e_s + e_f) / T(2);
+  c.d0 = (g <= T(1)) ? std::exp(-a) * sinhc(g) : (e_s - e_f) / (T(2) * g);
+  phi_by_inverse(a, b, w2t2, c);
+  return c;
+}
+
+}  // namespace detail
+
+// Builds the exact transition of `prm` over `dt_s`. Rejects invalid parameters, dt <= 0
+// and any result that would not be finite; `out` is untouched unless Status::kOk.
+template <typename T>
+[[nodiscard]] Status make_transition(const RotorParameters<T>& prm, T dt_s,
+                                     RotorTransition<T>& out) noexcept {
+  const Status st = validate(prm);
+  if (st != Status::kOk) return st;
+  if (!std::isfinite(dt_s)) return Status::kNonFiniteInput;
+  if (!(dt_s > T(0))) return Status::kNonPositiveStep;
+  const detail::RateMatrixTerms<T> m = detail::rate_matrix_terms(prm);
+  const T t = dt_s;
+  const T a = m.alpha * t;
+  const T b = m.beta_sq * t * t;
+  const T w2t2 = m.omega0_sq * t * t;
+  if (!all_finite(a, b, w2t2)) return Status::kNumericalOverflow;
+  const detail::PhiCoefficients<T> c = detail::phi_coefficients(a, b, w2t2);
+
+  Matrix2<T> nt;  // N t
+  nt << m.d * t, -m.p * t, m.q * t, -m.d * t;
+  RotorTransition<T> r;
+  r.dt_s = t;
+  r.rate_from_rate = c.d0 * nt;
+  r.rate_from_rate.diagonal().array() += c.m0;
+  Matrix2<T> e1 = (c.d1 * t) * nt;
+  e1.diagonal().array() += c.m1 * t;
+  Matrix2<T> e2 = (c.d2 * t * t) * nt;
+  e2.diagonal().array() += c.m2 * t * t;
+  r.angle_from_rate = e1;
+  r.rate_from_torque.col(0) = e1.col(0) * m.inv_j1;
+  r.rate_from_torque.col(1) = e1.col(1) * m.inv_j2;
+  r.angle_from_torque.col(0) = e2.col(0) * m.inv_j1;
+  r.angle_from_torque.col(1) = e2.col(1) * m.inv_j2;
+  if (!all_finite(r.rate_from_rate, r.angle_from_rate, r.rate_from_torque, r.angle_from_torque)) {
+    return Status::kNumericalOverflow;
+  }
+  out = r;
+  return Status::kOk;
+}
+
+// Advances `state` by the transition's step under constant `torque`: a fixed, small
+// amount of work (four 2x2 products). Non-finite input or output leaves `state` as it was.
+template <typename T>
+[[nodiscard]] Status advance(const RotorTransition<T>& tr, const Vector2<T>& torque,
+                             RotorState<T>& state) noexcept {
+  if (!all_finite(torque, state.angle_rad, state.rate_rad_s)) return Status::kNonFiniteInput;
+  Vector2<T> angle = state.angle_rad;
+  angle.noalias() += tr.angle_from_rate * state.rate_rad_s;
+  angle.noalias() += tr.angle_from_torque * torque;
+  Vector2<T> rate;
+  rate.noalias() = tr.rate_from_rate * state.rate_rad_s;
+  rate.noalias() += tr.rate_from_torque * torque;
+  if (!all_finite(angle, rate)) return Status::kNumericalOverflow;
+  state.angle_rad = angle;
+  state.rate_rad_s = rate;
+  return Status::kOk;
+}
+
+// One call for a step whose parameters change every time (a spinning-down rotor).
+template <typename T>
+[[nodiscard]] Status propagate(const RotorParameters<T>& prm, T dt_s, const Vector2<T>& torque,
+                               RotorState<T>& state) noexcept {
+  RotorTransition<T> tr;
+  const Status st = make_transition(prm, dt_s, tr);
+  if (st != Status::kOk) return st;
+  return advance(tr, torque, state);
+}
+
+}  // namespace gyro

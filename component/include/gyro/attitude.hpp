@@ -1,0 +1,117 @@
+// Attitude pieces of the gyro model: the exact rotation of one step, the gimbal angles
+// read off the spin axis in body axes, and checks on rotations handed in by callers.
+//
+// Frames: earth, body (x forward, y right, z down) and gyro (x = spin axis). The gyro's
+// attitude is the unit quaternion q_gyro_to_earth (it rotates gyro-axis vectors into earth
+// axes); R_earth_to_gyro is the transpose of its matrix, the report's ROTEG.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "gyro/rotor_parameters.hpp"
+
+namespace gyro {
+
+template <typename T>
+using Vector3 = Eigen::Matrix<T, 3, 1>;
+template <typename T>
+using Matrix3 = Eigen::Matrix<T, 3, 3>;
+template <typename T>
+using Quaternion = Eigen::Quaternion<T>;
+
+// The rotation of a step whose ISAF angles are (theta, psi): rotation vector (0, theta, psi)
+// in the gyro axes at the step's start. To first order this is the report's ROT matrix; here
+// it is exact, so the attitude stays a rotation however large the angles.
+template <typename T>
+[[nodiscard]] Quaternion<T> step_rotation(const Vector2<T>& isaf_angle_rad) noexcept {
+  const T th = isaf_angle_rad(0), ps = isaf_angle_rad(1);
+  const T h2 = (th * th + ps * ps) / T(4);  // (half the rotation angle)^2
+  constexpr T kSmall = ScalarTraits<T>::kSmallRotation / T(2);
+  T c, s;  // cos(h) and sin(h)/(2h)
+  if (h2 <= kSmall * kSmall) {
+    // Truncation below h^8/8! = 1e-17 for h <= 0.025: exact to rounding.
+    c = T(1) - h2 * (T(1) / T(2) - h2 * (T(1) / T(24) - h2 * (T(1) / T(720))));
+    s = (T(1) - h2 * (T(1) / T(6) - h2 * (T(1) / T(120) - h2 * (T(1) / T(5040))))) / T(2);
+  } else {
+    const T h = std::sqrt(h2);
+    c = std::cos(h);
+    s = std::sin(h) / (T(2) * h);
+  }
+  return Quaternion<T>(c, T(0), s * th, s * ps);
+}
+
+// Brings |q| back to 1 to first order without a square root: (3 - |q|^2)/2 ~ 1/|q| when
+// |q| ~ 1 (the error left is 1.5 (|q|^2 - 1)^2, far below rounding for a unit step).
+template <typename T>
+void renormalize(Quaternion<T>& q) noexcept {
+  q.coeffs() *= (T(3) - q.coeffs().squaredNorm()) / T(2);
+}
+
+// The spin axis (gyro x) expressed in earth axes.
+template <typename T>
+[[nodiscard]] Vector3<T> spin_axis_in_earth(const Quaternion<T>& q_gyro_to_earth) noexcept {
+  const T w = q_gyro_to_earth.w(), x = q_gyro_to_earth.x(), y = q_gyro_to_earth.y(),
+          z = q_gyro_to_earth.z();
+  return Vector3<T>(T(1) - T(2) * (y * y + z * z), T(2) * (x * y + w * z), T(2) * (x * z - w * y));
+}
+
+template <typename T>
+struct GimbalAngles {
+  T pitch_rad{};  // spin axis above the body x-y plane is positive (nose-up, like theta)
+  T yaw_rad{};    // spin axis to the right of the body x-z plane is positive (like psi)
+  T cosine_of_cone{1};  // cos of the total angle between spin axis and body x
+};
+
+// Gimbal angles from the spin axis in body axes (the report's GP vector). The listing's GIMBY
+// and GIMBZ are the negatives of these (see docs/seed-errata.md).
+template <typename T>
+[[nodiscard]] GimbalAngles<T> gimbal_angles(const Matrix3<T>& R_earth_to_body,
+                                            const Vector3<T>& spin_axis_earth) noexcept {
+  Vector3<T> gp;
+  gp.noalias() = R_earth_to_body * spin_axis_earth;
+  GimbalAngles<T> g;
+  g.pitch_rad = std::atan2(-gp(2), std::hypot(gp(0), gp(1)));
+  g.yaw_rad = std::atan2(gp(1), gp(0));
+  g.cosine_of_cone = gp(0);
+  return g;
+}
+
+// True when R is finite and orthonormal within the scalar type's tolerance.
+template <typename T>
+[[nodiscard]] bool is_rotation(const Matrix3<T>& r) noexcept {
+  if (!all_finite(r)) return false;
+  Matrix3<T> e;
+  e.noalias() = r * r.transpose();
+  e -= Matrix3<T>::Identity();
+  return e.cwiseAbs().maxCoeff() <= ScalarTraits<T>::kRotationTolerance && r.determinant() > T(0);
+}
+
+// Largest entry of R R^T - I: how far a matrix has drifted from a rotation.
+template <typename T>
+[[nodiscard]] T orthonormality_error(const Matrix3<T>& r) noexcept {
+  Matrix3<T> e;
+  e.noalias() = r * r.transpose();
+  e -= Matrix3<T>::Identity();
+  return e.cwiseAbs().maxCoeff();
+}
+
+// The passive (frame) rotation matrices the report's driver uses: a body that turns by
+// `angle` about its own y (pitch) or z (yaw) axis has R_new = R_axis(angle) * R_old.
+template <typename T>
+[[nodiscard]] Matrix3<T> frame_rotation_y(T angle) noexcept {
+  const T c = std::cos(angle), s = std::sin(angle);
+  Matrix3<T> r;
+  r << c, T(0), -s, T(0), T(1), T(0), s, T(0), c;
+  return r;
+}
+template <typename T>
+[[nodiscard]] Matrix3<T> frame_rotation_z(T angle) noexcept {
+  const T c = std::cos(angle), s = std::sin(angle);
+  Matrix3<T> r;
+  r << c, s, T(0), -s, c, T(0), T(0), T(0), T(1);
+  return r;
+}
+
+}  // namespace gyro

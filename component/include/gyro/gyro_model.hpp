@@ -1,0 +1,243 @@
+// The report's subroutine GYRO as a class: what a 6-DOF simulation embeds to carry a
+// two-axis gimballed gyro (and what the SIL stub wraps to emulate one).
+//
+// Per step: start the inertial small-angle frame (ISAF) at the gyro's attitude with the
+// angles at zero, advance the exact rotor dynamics over dt with the torques held, rotate the
+// attitude by the step's angles exactly, and read the gimbal angles off the spin axis in the
+// body axes of the END of the step. Every error of the listing is fixed; each is recorded in
+// docs/seed-errata.md. Allocation-free, exception-free; float or double.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "gyro/attitude.hpp"
+#include "gyro/error_sources.hpp"
+#include "gyro/nutation.hpp"
+#include "gyro/rotor_transition.hpp"
+
+namespace gyro {
+
+template <typename T>
+struct GyroModelConfig {
+  T pitch_inertia{};       // J1
+  T yaw_inertia{};         // J2
+  T spin_inertia{};        // J0
+  T friction{};            // f
+  T gimbal_cone_limit_rad{};        // limit on the total angle of spin axis to body x
+  T pitch_gimbal_limit_rad{};       // optional per-axis limits; 0 means "no per-axis limit"
+  T yaw_gimbal_limit_rad{};
+  T max_pitch_rate_rad_s{};         // slew-rate limits (the implied torquer limit)
+  T max_yaw_rate_rad_s{};
+  T small_angle_limit_rad{T(0.01)}; // the report's .01: at least 4 digits
+  T gravity{T(9.80665)};            // in the units of the accelerations passed to step()
+  GyroErrorSources<T> errors{};
+};
+
+// Names the configuration field a refusal is about (nullptr when accepted).
+struct ConfigCheck {
+  Status status{Status::kOk};
+  const char* field{nullptr};
+  [[nodiscard]] constexpr bool ok() const noexcept { return status == Status::kOk; }
+};
+
+template <typename T>
+[[nodiscard]] ConfigCheck check(const GyroModelConfig<T>& c) noexcept {
+  struct Positive {
+    T value;
+    const char* name;
+  };
+  const Positive positive[] = {
+      {c.pitch_inertia, "pitch_inertia"},
+      {c.yaw_inertia, "yaw_inertia"},
+      {c.spin_inertia, "spin_inertia"},
+      {c.gimbal_cone_limit_rad, "gimbal_cone_limit_rad"},
+      {c.max_pitch_rate_rad_s, "max_pitch_rate_rad_s"},
+      {c.max_yaw_rate_rad_s, "max_yaw_rate_rad_s"},
+      {c.small_angle_limit_rad, "small_angle_limit_rad"},
+      {c.gravity, "gravity"},
+  };
+  for (const Positive& p : positive) {
+    if (!std::isfinite(p.value)) return {Status::kNonFiniteInput, p.name};
+    if (!(p.value > T(0))) {
+      const bool inertia = (&p - positive) < 3;
+      return {inertia ? Status::kNonPositiveInertia : Status::kOutOfRange, p.name};
+    }
+  }
+  if (!std::isfinite(c.friction)) return {Status::kNonFiniteInput, "friction"};
+  if (c.friction < T(0)) return {Status::kNegativeFriction, "friction"};
+  if (!(c.gimbal_cone_limit_rad < kPi<T>)) return {Status::kOutOfRange, "gimbal_cone_limit_rad"};
+  const T axis_limits[] = {c.pitch_gimbal_limit_rad, c.yaw_gimbal_limit_rad};
+  const char* axis_names[] = {"pitch_gimbal_limit_rad", "yaw_gimbal_limit_rad"};
+  for (int i = 0; i < 2; ++i) {
+    if (!std::isfinite(axis_limits[i])) return {Status::kNonFiniteInput, axis_names[i]};
+    if (axis_limits[i] < T(0) || !(axis_limits[i] < kPi<T>)) return {Status::kOutOfRange, axis_names[i]};
+  }
+  if (!all_finite(c.errors)) return {Status::kNonFiniteInput, "errors"};
+  return {};
+}
+
+// Inputs of one step.
+template <typename T>
+struct GyroStepInput {
+  T dt_s{};
+  Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};  // body attitude at the END of the step
+  Vector2<T> body_accel{Vector2<T>::Zero()};  // (lateral y, normal z), units of config.gravity
+  T spin_hz{};                                // may vary step to step (spin-down)
+};
+
+// Flag bits (a word, not a union of bools, so telemetry can carry it as is).
+enum GyroModelFlag : std::uint32_t {
+  kFlagGimbalLimit = 1u << 0,  // the spin axis is outside the gimbal cone or a per-axis limit
+  kFlagSmallAngle = 1u << 1,   // the step's angles or nutation amplitude exceed the limit
+};
+
+template <typename T>
+class GyroModel {
+ public:
+  // Validates and stores the configuration; refuses with the field's name. Leaves the gyro
+  // caged (call uncage() before step()).
+  [[nodiscard]] ConfigCheck configure(const GyroModelConfig<T>& config) noexcept {
+    const ConfigCheck c = check(config);
+    if (!c.ok()) return c;
+    config_ = config;
+    cos_cone_limit_ = std::cos(config.gimbal_cone_limit_rad);
+    configured_ = true;
+    uncaged_ = false;
+    cache_valid_ = false;
+    return c;
+  }
+
+  // Uncaging (the report's initialisation): rates from the body's pitch and yaw rates, the
+  // gyro attitude from the body's plus a small (pitch, yaw) offset.
+  [[nodiscard]] Status uncage(const Matrix3<T>& R_earth_to_body, const Vector2<T>& body_rate_rad_s,
+                              const Vector2<T>& offset_rad = Vector2<T>::Zero()) noexcept {
+    if (!configured_) return Status::kNotConfigured;
+    if (!all_finite(body_rate_rad_s, offset_rad)) return Status::kNonFiniteInput;
+    if (!is_rotation(R_earth_to_body)) return Status::kInvalidRotation;
+    Quaternion<T> q_body(Matrix3<T>(R_earth_to_body.transpose()));  // body to earth
+    Quaternion<T> q = q_body * step_rotation(offset_rad);
+    q.normalize();
+    q_gyro_to_earth_ = q;
+    rate_rad_s_ = body_rate_rad_s;
+    isaf_angle_rad_.setZero();
+    nutation_amplitude_rad_.setZero();
+    gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
+    flags_ = gimbal_flag(gimbal_);
+    uncaged_ = true;
+    return Status::kOk;
+  }
+
+  // One step with the report's command: slew rates, limited per axis (pitch by the pitch
+  // limit), turned into torque for a frictionless gyro as the report's torquer does.
+  [[nodiscard]] Status step_slew(const GyroStepInput<T>& in, const Vector2<T>& slew_rate_cmd_rad_s) noexcept {
+    if (!all_finite(slew_rate_cmd_rad_s, in.spin_hz)) return Status::kNonFiniteInput;
+    const Vector2<T> limited(clamp(slew_rate_cmd_rad_s(0), config_.max_pitch_rate_rad_s),
+                             clamp(slew_rate_cmd_rad_s(1), config_.max_yaw_rate_rad_s));
+    const T h = angular_momentum(in.spin_hz, config_.spin_inertia);
+    return step_torque(in, torque_for_rate_frictionless(h, limited));
+  }
+
+  // One step with the torquer torques (T1 pitch axis, T2 yaw axis) held over dt.
+  [[nodiscard]] Status step_torque(const GyroStepInput<T>& in, const Vector2<T>& torque_cmd) noexcept {
+    if (!configured_) return Status::kNotConfigured;
+    if (!uncaged_) return Status::kNotConfigured;
+    if (!all_finite(in.dt_s, in.spin_hz, in.body_accel, torque_cmd)) return Status::kNonFiniteInput;
+    if (!(in.dt_s > T(0))) return Status::kNonPositiveStep;
+    if (in.spin_hz < T(0)) return Status::kNegativeAngularMomentum;
+    if (!is_rotation(in.R_earth_to_body)) return Status::kInvalidRotation;
+
+    const RotorParameters<T> prm{config_.pitch_inertia, config_.yaw_inertia, config_.friction,
+                                 angular_momentum(in.spin_hz, config_.spin_inertia)};
+    if (!cache_valid_ || !(prm.angular_momentum == cached_h_) || !(in.dt_s == transition_.dt_s)) {
+      RotorTransition<T> tr;
+      const Status st = make_transition(prm, in.dt_s, tr);
+      if (st != Status::kOk) return st;
+      transition_ = tr;
+      cached_h_ = prm.angular_momentum;
+      cache_valid_ = true;
+    }
+
+    const Vector2<T> gimbal(gimbal_.pitch_rad, gimbal_.yaw_rad);
+    const Vector2<T> drift =
+        error_drift(config_.errors, gimbal, rate_rad_s_, in.body_accel, config_.gravity);
+    const Vector2<T> torque = cross_coupled_torque(config_.errors, torque_cmd) +
+                              torque_for_rate_frictionless(prm.angular_momentum, drift);
+
+    RotorState<T> s;  // the ISAF starts at the gyro's attitude: angles zero (listing kept them)
+    s.rate_rad_s = rate_rad_s_;
+    const Status adv = advance(transition_, torque, s);
+    if (adv != Status::kOk) return adv;
+
+    Vector2<T> amplitude = Vector2<T>::Zero();
+    const Status amp = nutation_amplitude(prm, rate_rad_s_, torque, amplitude);
+    if (amp != Status::kOk) return amp;
+
+    Quaternion<T> q = q_gyro_to_earth_ * step_rotation(s.angle_rad);
+    renormalize(q);
+    const GimbalAngles<T> g = gimbal_angles(in.R_earth_to_body, spin_axis_in_earth(q));
+    if (!all_finite(g.pitch_rad, g.yaw_rad)) return Status::kNumericalOverflow;
+
+    std::uint32_t flags = gimbal_flag(g);
+    const T lim = config_.small_angle_limit_rad;
+    if (amplitude.maxCoeff() > lim || s.angle_rad.cwiseAbs().maxCoeff() > lim) flags |= kFlagSmallAngle;
+
+    q_gyro_to_earth_ = q;
+    rate_rad_s_ = s.rate_rad_s;
+    isaf_angle_rad_ = s.angle_rad;
+    nutation_amplitude_rad_ = amplitude;
+    gimbal_ = g;
+    flags_ = flags;
+    applied_torque_ = torque;
+    return Status::kOk;
+  }
+
+  [[nodiscard]] const Quaternion<T>& attitude_gyro_to_earth() const noexcept { return q_gyro_to_earth_; }
+  [[nodiscard]] Matrix3<T> R_earth_to_gyro() const noexcept {
+    return q_gyro_to_earth_.toRotationMatrix().transpose();
+  }
+  [[nodiscard]] const Vector2<T>& rate_rad_s() const noexcept { return rate_rad_s_; }  // (theta', psi')
+  [[nodiscard]] const Vector2<T>& isaf_angle_rad() const noexcept { return isaf_angle_rad_; }  // last step
+  [[nodiscard]] const Vector2<T>& nutation_amplitude_rad() const noexcept { return nutation_amplitude_rad_; }
+  [[nodiscard]] const Vector2<T>& applied_torque() const noexcept { return applied_torque_; }
+  [[nodiscard]] T gimbal_pitch_rad() const noexcept { return gimbal_.pitch_rad; }
+  [[nodiscard]] T gimbal_yaw_rad() const noexcept { return gimbal_.yaw_rad; }
+  [[nodiscard]] T gimbal_cone_rad() const noexcept {
+    return std::acos(std::min(T(1), std::max(T(-1), gimbal_.cosine_of_cone)));
+  }
+  [[nodiscard]] std::uint32_t flags() const noexcept { return flags_; }
+  [[nodiscard]] bool gimbal_limit_exceeded() const noexcept { return (flags_ & kFlagGimbalLimit) != 0u; }
+  [[nodiscard]] bool small_angle_exceeded() const noexcept { return (flags_ & kFlagSmallAngle) != 0u; }
+  [[nodiscard]] const GyroModelConfig<T>& config() const noexcept { return config_; }
+  [[nodiscard]] bool uncaged() const noexcept { return uncaged_; }
+
+ private:
+  [[nodiscard]] static T clamp(T v, T limit) noexcept {
+    return std::min(limit, std::max(-limit, v));
+  }
+  // Total cone (the listing's GP(1) > COS(GIMBAL) test) and, if set, each axis against its
+  // own limit (the listing compared an angle with a cosine).
+  [[nodiscard]] std::uint32_t gimbal_flag(const GimbalAngles<T>& g) const noexcept {
+    bool out = g.cosine_of_cone < cos_cone_limit_;
+    if (config_.pitch_gimbal_limit_rad > T(0)) out = out || std::abs(g.pitch_rad) > config_.pitch_gimbal_limit_rad;
+    if (config_.yaw_gimbal_limit_rad > T(0)) out = out || std::abs(g.yaw_rad) > config_.yaw_gimbal_limit_rad;
+    return out ? kFlagGimbalLimit : 0u;
+  }
+
+  GyroModelConfig<T> config_{};
+  T cos_cone_limit_{T(1)};
+  bool configured_{false};
+  bool uncaged_{false};
+  Quaternion<T> q_gyro_to_earth_{Quaternion<T>::Identity()};
+  Vector2<T> rate_rad_s_{Vector2<T>::Zero()};
+  Vector2<T> isaf_angle_rad_{Vector2<T>::Zero()};
+  Vector2<T> nutation_amplitude_rad_{Vector2<T>::Zero()};
+  Vector2<T> applied_torque_{Vector2<T>::Zero()};
+  GimbalAngles<T> gimbal_{};
+  std::uint32_t flags_{0};
+  RotorTransition<T> transition_{};  // cached while H and dt stay the same
+  T cached_h_{};
+  bool cache_valid_{false};
+};
+
+}  // namespace gyro

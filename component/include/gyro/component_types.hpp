@@ -1,0 +1,118 @@
+// The flight component's interface types: configuration, per-tick guidance input, modes,
+// flags and telemetry. Kept apart from the logic so ground tools can include them alone.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "gyro/attitude.hpp"
+#include "gyro/status.hpp"
+
+namespace gyro {
+
+// Modes (see docs/component.md for the transitions):
+//   kIdle      constructed or configured, not yet activated: no port traffic
+//   kCaged     electrically caged: the torquers slave the spin axis to the body x axis
+//   kUncaging  the report's uncaging initialisation done; torquers off while it settles
+//   kFree      free gyro: precesses at the commanded slew rates (zero = hold inertially)
+//   kFault     safe mode: torquers off; left only by a cage request once the fault clears
+enum class GyroMode : std::uint8_t { kIdle = 0, kCaged, kUncaging, kFree, kFault };
+
+[[nodiscard]] constexpr const char* to_string(GyroMode m) noexcept {
+  switch (m) {
+    case GyroMode::kIdle: return "idle";
+    case GyroMode::kCaged: return "caged";
+    case GyroMode::kUncaging: return "uncaging";
+    case GyroMode::kFree: return "free";
+    case GyroMode::kFault: return "fault";
+  }
+  return "unknown";
+}
+
+// What guidance asks for this tick.
+enum class ModeRequest : std::uint8_t { kNone = 0, kCage, kUncage };
+
+// Flag bits, raised for the tick in which the condition holds (telemetry.flags) and counted
+// (telemetry.counters, index = bit number).
+enum ComponentFlag : std::uint32_t {
+  kGimbalLimit = 1u << 0,        // estimated spin axis outside the gimbal cone / axis limits
+  kSmallAngleExceeded = 1u << 1, // a tick's angles or nutation amplitude beyond the limit
+  kNutationUnresolved = 1u << 2, // fewer than 2 ticks per nutation period: pickoffs alias it
+  kPickoffInvalid = 1u << 3,     // port failed, valid bit clear, non-finite or out of range
+  kPickoffStale = 1u << 4,       // sequence counter did not advance
+  kPickoffJump = 1u << 5,        // implausible change since the last accepted reading
+  kResidualFault = 1u << 6,      // |measured - predicted| over its bound for long enough
+  kTorquerSaturated = 1u << 7,   // the torque law asked more than the torquer gives
+  kSpinLow = 1u << 8,            // spin below its minimum (readback or configured)
+  kTorquerWriteFailed = 1u << 9, // the port refused the torquer command
+  kNavInvalid = 1u << 10,        // body attitude missing, non-finite or not a rotation
+  kCommandRejected = 1u << 11,   // guidance input non-finite: the tick was refused
+  kTickSkipped = 1u << 12,       // tick count did not advance by exactly one
+  kGimbalStopProtect = 1u << 13, // a slew command toward a gimbal stop was withheld
+  kFaultLatched = 1u << 14,      // in safe mode
+};
+inline constexpr int kComponentFlagCount = 15;
+
+template <typename T>
+struct GyroComponentConfig {
+  T tick_s{};                    // the fixed tick of the rate group
+  // Rotor (units consistent with the torques: SI or the report's slug*ft^2).
+  T pitch_inertia{};
+  T yaw_inertia{};
+  T spin_inertia{};
+  T friction{};
+  T nominal_spin_hz{};           // used when the hardware has no spin readback
+  T min_spin_hz{};               // below this the gyro is no reference: spin-low fault
+  bool use_spin_readback{true};  // take H from the port's spin readback when it is valid
+  // Torque law.
+  T max_pitch_rate_rad_s{};      // slew-rate limits
+  T max_yaw_rate_rad_s{};
+  T max_torque{};                // torquer saturation, per axis (torque units)
+  bool friction_compensation{true};  // exact inverse of the friction-coupled precession
+  T cage_gain_1_s{};             // caging loop: commanded rate = body rate - gain * gimbal
+  // Gimbals.
+  T gimbal_cone_limit_rad{};     // mechanical cone
+  T gimbal_stop_margin_rad{};    // no slewing toward a stop closer than this
+  T small_angle_limit_rad{T(0.01)};
+  // Pickoff validation.
+  T pickoff_range_rad{};         // physical range of the pickoffs
+  T max_pickoff_step_rad{};      // largest believable change between two ticks
+  // Estimation and fault detection.
+  T estimator_gain{};            // fraction of the residual fed back per tick (0..1)
+  T residual_limit_rad{};        // bound on |measured - predicted|
+  std::uint32_t residual_persistence_ticks{};  // consecutive ticks over the bound -> fault
+  std::uint32_t invalid_persistence_ticks{};   // consecutive bad/stale readings -> fault
+  std::uint32_t spin_low_persistence_ticks{};
+  std::uint32_t torquer_fail_persistence_ticks{};
+  std::uint32_t uncage_settle_ticks{};         // ticks in kUncaging before kFree
+};
+
+// Navigation and guidance for one tick.
+template <typename T>
+struct GuidanceInput {
+  ModeRequest request{ModeRequest::kNone};
+  Vector2<T> slew_rate_cmd_rad_s{Vector2<T>::Zero()};  // (pitch, yaw), used in kFree
+  bool nav_valid{false};
+  Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};  // body attitude at this tick
+  Vector2<T> body_rate_rad_s{Vector2<T>::Zero()};      // body (pitch q, yaw r) rates
+};
+
+// Telemetry published every tick (a plain struct: copy it out, log it, downlink it).
+template <typename T>
+struct GyroTelemetry {
+  std::uint64_t tick{};
+  GyroMode mode{GyroMode::kIdle};
+  std::uint32_t flags{};
+  std::array<std::uint32_t, kComponentFlagCount> counters{};  // saturating, per flag bit
+  Vector2<T> gimbal_measured_rad{Vector2<T>::Zero()};   // last accepted pickoff reading
+  Vector2<T> gimbal_predicted_rad{Vector2<T>::Zero()};  // exact-dynamics prediction
+  Vector2<T> residual_rad{Vector2<T>::Zero()};          // measured - predicted
+  Quaternion<T> attitude_gyro_to_earth{Quaternion<T>::Identity()};  // estimated
+  Vector2<T> precession_rate_rad_s{Vector2<T>::Zero()}; // estimated (theta', psi')
+  Vector2<T> rate_cmd_rad_s{Vector2<T>::Zero()};        // after limits and stop protection
+  Vector2<T> torque_cmd{Vector2<T>::Zero()};            // written to the torquer (T1, T2)
+  Vector2<T> nutation_amplitude_rad{Vector2<T>::Zero()};
+  T spin_hz{};                                          // spin used this tick
+};
+
+}  // namespace gyro

@@ -16,3 +16,14 @@ template Status nutation_amplitude<float>(const RotorParameters<float>&, const V
 template Status nutation_amplitude<double>(const RotorParameters<double>&, const Vector2<double>&,
                                            const Vector2<double>&, Vector2<double>&);
 }  // namespace gyro
+
+#include "gyro/gyro_component.hpp"
+#include "gyro/gyro_model.hpp"
+#include "gyro/gyro_port.hpp"
+
+namespace gyro {
+template class GyroModel<float>;
+template class GyroModel<double>;
+template class GyroComponent<float>;
+template class GyroComponent<double>;
+}  // namespace gyro

@@ -192,6 +192,20 @@ class GyroModel {
     return Status::kOk;
   }
 
+  // Turns the gyro by small (pitch, yaw) angles about its own axes and re-reads the gimbal
+  // angles with `R_earth_to_body`: the correction step of an estimator built on the model.
+  [[nodiscard]] Status correct_attitude(const Vector2<T>& angle_rad, const Matrix3<T>& R_earth_to_body) noexcept {
+    if (!uncaged_) return Status::kNotConfigured;
+    if (!all_finite(angle_rad)) return Status::kNonFiniteInput;
+    if (!is_rotation(R_earth_to_body)) return Status::kInvalidRotation;
+    Quaternion<T> q = q_gyro_to_earth_ * step_rotation(angle_rad);
+    renormalize(q);
+    q_gyro_to_earth_ = q;
+    gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
+    flags_ = (flags_ & ~static_cast<std::uint32_t>(kFlagGimbalLimit)) | gimbal_flag(gimbal_);
+    return Status::kOk;
+  }
+
   [[nodiscard]] const Quaternion<T>& attitude_gyro_to_earth() const noexcept { return q_gyro_to_earth_; }
   [[nodiscard]] Matrix3<T> R_earth_to_gyro() const noexcept {
     return q_gyro_to_earth_.toRotationMatrix().transpose();

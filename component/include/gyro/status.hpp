@@ -18,6 +18,7 @@ enum class Status : std::uint8_t {
   kNumericalOverflow,       // the result would not be representable in the scalar type
   kNotConfigured,           // called before a successful configure()
   kInvalidRotation,         // a rotation matrix that is not orthonormal
+  kWrongMode,               // not allowed in the current mode (e.g. configure while active)
 };
 
 [[nodiscard]] constexpr const char* to_string(Status s) noexcept {
@@ -33,6 +34,7 @@ enum class Status : std::uint8_t {
     case Status::kNumericalOverflow: return "result not representable";
     case Status::kNotConfigured: return "not configured";
     case Status::kInvalidRotation: return "rotation matrix not orthonormal";
+    case Status::kWrongMode: return "not allowed in this mode";
   }
   return "unknown status";
 }

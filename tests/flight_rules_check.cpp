@@ -27,3 +27,13 @@ template class GyroModel<double>;
 template class GyroComponent<float>;
 template class GyroComponent<double>;
 }  // namespace gyro
+
+#include "gyro/noise.hpp"
+#include "gyro/simulated_gyro.hpp"
+
+namespace gyro {
+template class NoiseStream<float>;
+template class NoiseStream<double>;
+template class SimulatedGyro<float>;
+template class SimulatedGyro<double>;
+}  // namespace gyro

@@ -25,7 +25,10 @@
 // exceeds gimbal_stop_rad, the gimbal has hit the stop. The impact is taken as inelastic:
 // the model is re-uncaged with the spin axis on the stop, in the direction it was heading,
 // and the gimbal rates equal to the body's pitch/yaw rates over the step (from the two body
-// attitudes). at_gimbal_stop() says so for that tick.
+// attitudes). at_gimbal_stop() says so for that tick. While the body keeps pushing, the gyro
+// is put back on the stop every tick and, nutating within each tick, precesses under the
+// stop's reaction: the spin axis walks round the rim of the stop (as a real gyro held against
+// its stop does) rather than staying where it first struck.
 //
 // Faults (active for ticks in [start_tick, start_tick + duration_ticks), duration 0 =
 // permanent; axis 0 pitch, 1 yaw, -1 both):
@@ -248,7 +251,6 @@ class SimulatedGyro final : public GyroPort<T> {
     torque_cmd_.setZero();
     at_stop_ = false;
     spin_hz_ = spin_at(0);
-    lag_out_ = truth_gimbal();
     converter_out_.setZero();
     reading_ = PickoffReading<T>{};
     started_ = true;
@@ -414,7 +416,11 @@ class SimulatedGyro final : public GyroPort<T> {
   void sample(bool power_up) noexcept {
     const PickoffModel<T>& pm = config_.pickoff;
     const Vector2<T> truth = truth_gimbal();
-    if (!power_up) lag_out_ += lag_gain_ * (truth - lag_out_);
+    if (power_up || !(pm.lag_s > T(0))) {
+      lag_out_ = truth;  // no lag: exactly the truth (x + (y - x) need not round to y)
+    } else {
+      lag_out_ += lag_gain_ * (truth - lag_out_);
+    }
 
     Vector2<T> bias = pm.bias_rad;
     bool stuck[2] = {false, false};

@@ -53,6 +53,8 @@ PickoffReading<double> read(Sim& sim) {
 
 V2 truth_angles(const Sim& sim) { return V2(sim.truth().gimbal_pitch_rad(), sim.truth().gimbal_yaw_rad()); }
 
+const V2 kTurnForNoise(0.3, -0.2);
+
 bool bit_equal(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // ---- lifecycle and the port contract ------------------------------------------------------
@@ -285,6 +287,21 @@ TEST(SimulatedGyroPickoff, GivenNoiseThenMeasuredSdMatchesNoiseRadAndAxesAreInde
   const std::vector<Sample> t = run(c, 10, V2::Zero());
   EXPECT_NE(t[5].reading.gimbal_angle_rad(0), s[5].reading.gimbal_angle_rad(0));
   EXPECT_EQ(t[5].truth, s[5].truth);
+}
+
+TEST(SimulatedGyroPickoff, GivenNoiseThenEachAxisDrawsItsOwnNamedStreamIndexedByTick) {
+  // Reading - truth = noise_rad * (stream (seed, axis id), sample number = tick): documented,
+  // so another program can reproduce it, and the axes cannot shift one another.
+  Config c = base_config();
+  c.pickoff.noise_rad = 1e-4;
+  c.seed = 123;
+  const NoiseStream<double> pitch(123, static_cast<std::uint64_t>(NoiseStreamId::kPickoffNoisePitch));
+  const NoiseStream<double> yaw(123, static_cast<std::uint64_t>(NoiseStreamId::kPickoffNoiseYaw));
+  const std::vector<Sample> s = run(c, 200, kTurnForNoise);
+  for (std::uint64_t k = 0; k < s.size(); ++k) {
+    ASSERT_NEAR(s[k].reading.gimbal_angle_rad(0) - s[k].truth(0), 1e-4 * pitch.gaussian(k), 1e-15) << k;
+    ASSERT_NEAR(s[k].reading.gimbal_angle_rad(1) - s[k].truth(1), 1e-4 * yaw.gaussian(k), 1e-15) << k;
+  }
 }
 
 TEST(SimulatedGyroPickoff, GivenReadbackOrNotThenSpinValidSaysSo) {
@@ -572,6 +589,18 @@ TEST(SimulatedGyroFaults, GivenSpinMotorFailureThenSpinDecaysInItsWindowAndHolds
   EXPECT_EQ(s[kStart].spin_hz, kSpinHz);
   EXPECT_LT(s[kStart + 1].spin_hz, kSpinHz);
   EXPECT_EQ(s[kEnd].spin_hz, s.back().spin_hz);  // run-down stops with the fault
+}
+
+TEST(SimulatedGyroFaults, GivenSpinMotorFailureOnAFrictionlessGyroThenItRunsDownToExactlyZero) {
+  // The rotor stops within the run: the stub keeps stepping (H = 0, f = 0: free gimbals).
+  for (double friction : {0.0, 5.0}) {
+    Config c = with_fault(FaultKind::kSpinMotorFailure, 10, 0, -1, 1e-3);
+    c.gyro.friction = friction;
+    const std::vector<Sample> s = run(c, 1000, kTurn, V2(1.0, 0.0));
+    EXPECT_EQ(s.back().spin_hz, 0.0);
+    EXPECT_EQ(s.back().reading.spin_hz, 0.0);
+    EXPECT_TRUE(std::isfinite(s.back().reading.gimbal_angle_rad(0)));
+  }
 }
 
 TEST(SimulatedGyroFaults, GivenPermanentFaultThenItNeverEnds) {

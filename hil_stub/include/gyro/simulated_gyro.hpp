@@ -19,7 +19,8 @@
 // Spin: spin(t) = spin_hz exp(-t/tau) (tau = 0: constant) times, for each spin-motor-failure
 // fault, exp(-(min(t, t_end) - t_start)/magnitude) once t >= t_start: the run-down stops when
 // the fault ends but the lost speed is not regained (no spin-up model). Each step uses the
-// spin at the middle of the step (H is constant within a step in the exact model).
+// spin at the middle of the step (H is constant within a step in the exact model). A spin
+// below spin_hz * epsilon is taken as stopped: exactly 0.
 //
 // Mechanical gimbal stop: if after a step the total cone angle of the spin axis from body x
 // exceeds gimbal_stop_rad, the gimbal has hit the stop. The impact is taken as inelastic:
@@ -361,7 +362,10 @@ class SimulatedGyro final : public GyroPort<T> {
       if (f.duration_ticks != 0u) end = std::min(ticks, static_cast<T>(f.start_tick + f.duration_ticks));
       exponent += (end - start) * dt / f.magnitude;
     }
-    return config_.spin_hz * std::exp(-exponent);
+    const T spin = config_.spin_hz * std::exp(-exponent);
+    // Run down below the rounding of the initial spin: stopped. (A vanishing but non-zero H
+    // has no use and, squared, underflows inside the exact solution.)
+    return (spin < config_.spin_hz * std::numeric_limits<T>::epsilon()) ? T(0) : spin;
   }
   [[nodiscard]] T spin_at(std::uint64_t tick) const noexcept { return spin_at_time(static_cast<T>(tick)); }
   [[nodiscard]] T spin_at_mid_step(std::uint64_t start_tick) const noexcept {

@@ -1,0 +1,136 @@
+// The body's motion in a scenario: its attitude, pitch/yaw rates and accelerations tick by
+// tick. The truth environment of the software-in-the-loop run, so it is computed in double
+// whatever scalar the component and the stub run in.
+//
+// Profile: a start attitude (roll, pitch, yaw Euler angles, 3-2-1), constant body rates q
+// (pitch, about body y) and r (yaw, about body z), an optional sinusoidal weave on top,
+//   q(t) = q0 + Aq sin(2 pi f t),   r(t) = r0 + Ar sin(2 pi f t + phase),
+// and constant lateral (body y) and normal (body z) accelerations.
+//
+// Per tick the body turns by an exact rotation (no first-order matrices): with the rotation
+// vector composition the body's angular velocity (0, q_mean, r_mean) is held over the tick,
+// q_mean and r_mean being the exact means of q(t) and r(t) over the tick (the rotation is
+// then exact for constant rates; with a weave, the second-order coning term within one tick
+// is neglected). The pitch-then-yaw composition reproduces the report's driver GYMAIN
+// (ROTZ * ROTY * ROTEB, with exact matrices). The attitude is composed as a unit quaternion,
+// normalised every tick, so it stays a rotation over any number of ticks.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "gyro/attitude.hpp"
+
+namespace gyro::sil {
+
+enum class RotationComposition : std::uint8_t {
+  kRotationVector,  // angular velocity held over the tick (exact for constant rates)
+  kPitchThenYaw,    // the report's GYMAIN: pitch by q*dt about body y, then yaw by r*dt about z
+};
+
+struct WeaveProfile {
+  double pitch_amplitude_rad_s{0};
+  double yaw_amplitude_rad_s{0};
+  double frequency_hz{0};
+  double yaw_phase_rad{0};  // of the yaw weave relative to the pitch weave (pi/2: coning)
+};
+
+struct BodyProfile {
+  std::array<double, 3> attitude_rad{0, 0, 0};  // (roll, pitch, yaw) at t = 0, 3-2-1 Euler
+  std::array<double, 2> rate_rad_s{0, 0};       // constant (q, r)
+  RotationComposition composition{RotationComposition::kRotationVector};
+  WeaveProfile weave{};
+  std::array<double, 2> accel{0, 0};            // (lateral y, normal z), units of gravity
+};
+
+inline constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// R_earth_to_body of a 3-2-1 (yaw, pitch, roll) Euler attitude.
+[[nodiscard]] inline Eigen::Matrix3d euler_321_to_R_earth_to_body(const std::array<double, 3>& rpy) {
+  const double c = std::cos(rpy[0]), s = std::sin(rpy[0]);
+  Eigen::Matrix3d roll = Eigen::Matrix3d::Zero();
+  roll << 1, 0, 0, 0, c, s, 0, -s, c;
+  const Eigen::Matrix3d pitch_yaw = frame_rotation_y(rpy[1]) * frame_rotation_z(rpy[2]);
+  Eigen::Matrix3d r = Eigen::Matrix3d::Zero();
+  r.noalias() = roll * pitch_yaw;
+  return r;
+}
+
+class BodyMotion {
+ public:
+  BodyMotion(const BodyProfile& profile, double tick_s)
+      : profile_(profile),
+        tick_s_(tick_s),
+        q_body_to_earth_(Eigen::Matrix3d(euler_321_to_R_earth_to_body(profile.attitude_rad).transpose())) {
+    q_body_to_earth_.normalize();
+    R_earth_to_body_ = q_body_to_earth_.toRotationMatrix().transpose();
+  }
+
+  // Body (q, r) at time t.
+  [[nodiscard]] Eigen::Vector2d rate_at(double t) const {
+    const WeaveProfile& w = profile_.weave;
+    const double a = kTwoPi * w.frequency_hz * t;
+    return Eigen::Vector2d(profile_.rate_rad_s[0] + w.pitch_amplitude_rad_s * std::sin(a),
+                           profile_.rate_rad_s[1] + w.yaw_amplitude_rad_s * std::sin(a + w.yaw_phase_rad));
+  }
+
+  // Exact mean of (q, r) over [t0, t1].
+  [[nodiscard]] Eigen::Vector2d mean_rate(double t0, double t1) const {
+    const WeaveProfile& w = profile_.weave;
+    Eigen::Vector2d m(profile_.rate_rad_s[0], profile_.rate_rad_s[1]);
+    const double omega = kTwoPi * w.frequency_hz;
+    if (omega > 0 && (w.pitch_amplitude_rad_s != 0 || w.yaw_amplitude_rad_s != 0)) {
+      const double span = omega * (t1 - t0);
+      const double a0 = omega * t0, a1 = omega * t1;
+      m(0) += w.pitch_amplitude_rad_s * (std::cos(a0) - std::cos(a1)) / span;
+      m(1) += w.yaw_amplitude_rad_s * (std::cos(a0 + w.yaw_phase_rad) - std::cos(a1 + w.yaw_phase_rad)) / span;
+    }
+    return m;
+  }
+
+  // The passive rotation of one tick, R_new = step * R_old, for mean rates `w` over dt.
+  [[nodiscard]] static Eigen::Matrix3d tick_rotation(const Eigen::Vector2d& w, double dt,
+                                                     RotationComposition composition) {
+    if (composition == RotationComposition::kPitchThenYaw) {
+      Eigen::Matrix3d r = Eigen::Matrix3d::Zero();
+      r.noalias() = frame_rotation_z(w(1) * dt) * frame_rotation_y(w(0) * dt);
+      return r;
+    }
+    const Eigen::Vector3d omega(0.0, w(0), w(1));
+    const double angle = omega.norm() * dt;
+    if (!(angle > 0)) return Eigen::Matrix3d::Identity();
+    // The body turns by +angle about omega; body components of fixed vectors turn by -angle.
+    return Eigen::AngleAxisd(-angle, omega.normalized()).toRotationMatrix();
+  }
+
+  // Moves the body from its current tick to the next.
+  void advance() {
+    const double t0 = time_s();
+    ++tick_;
+    const double t1 = time_s();
+    const Eigen::Matrix3d step = tick_rotation(mean_rate(t0, t1), tick_s_, profile_.composition);
+    // R_new = step * R_old  <=>  q_new (body to earth) = q_old * step^T.
+    const Eigen::Quaterniond step_q(Eigen::Matrix3d(step.transpose()));
+    q_body_to_earth_ = q_body_to_earth_ * step_q;
+    q_body_to_earth_.normalize();
+    R_earth_to_body_ = q_body_to_earth_.toRotationMatrix().transpose();
+  }
+
+  [[nodiscard]] std::uint64_t tick() const { return tick_; }
+  [[nodiscard]] double time_s() const { return static_cast<double>(tick_) * tick_s_; }
+  [[nodiscard]] const Eigen::Matrix3d& R_earth_to_body() const { return R_earth_to_body_; }
+  [[nodiscard]] Eigen::Vector2d rate_rad_s() const { return rate_at(time_s()); }
+  [[nodiscard]] Eigen::Vector2d accel() const { return Eigen::Vector2d(profile_.accel[0], profile_.accel[1]); }
+
+ private:
+  BodyProfile profile_;
+  double tick_s_;
+  std::uint64_t tick_{0};
+  Eigen::Quaterniond q_body_to_earth_{Eigen::Quaterniond::Identity()};
+  Eigen::Matrix3d R_earth_to_body_{Eigen::Matrix3d::Identity()};
+};
+
+}  // namespace gyro::sil

@@ -1,0 +1,48 @@
+// Plots of a gyro_sil CSV with gnuplot: the gimbal angles against time, one panel per axis,
+// the true angles as lines and the component's measured (and predicted) angles on top, as the
+// report's Figures show the nutation riding on the slow drift.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gyro::sil {
+
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct PlotSeries {
+  int column{0};  // 1-based CSV column
+  std::string title;
+  bool points{false};  // small points instead of a line
+  std::string style;   // extra gnuplot style, e.g. "lw 3 lc rgb '#a0a0a0'"
+};
+
+struct PlotPanel {
+  std::string ylabel;
+  std::vector<PlotSeries> series;
+};
+
+struct PlotRequest {
+  std::filesystem::path csv;
+  std::filesystem::path png;
+  std::string title;
+  int time_column{1};
+  std::vector<PlotPanel> panels;  // stacked top to bottom
+};
+
+// The gnuplot program: $GNUPLOT if set, else "gnuplot" on PATH; nullopt if there is none.
+[[nodiscard]] std::optional<std::filesystem::path> find_gnuplot();
+
+// The gnuplot script that draws `r` (exposed for tests).
+[[nodiscard]] std::string gnuplot_script(const PlotRequest& r);
+
+// Writes r.png. Throws PlotError when gnuplot is missing, fails, or leaves no image.
+void plot_csv(const PlotRequest& r);
+
+}  // namespace gyro::sil

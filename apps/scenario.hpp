@@ -1,0 +1,88 @@
+// A gyro_sil scenario: what runs (component and stub configurations), the body's motion,
+// the guidance schedule and the run's tick and length; read from JSON and checked field by
+// field. The schema is documented in docs/scenarios.md.
+//
+// Every refusal is a ScenarioError naming the file, the field as a JSON path
+// ("gyro.rotor.pitch_inertia", "guidance.schedule[2].t_s") and the reason.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "body_motion.hpp"
+#include "gyro/component_types.hpp"
+#include "gyro/simulated_gyro.hpp"
+
+namespace gyro::sil {
+
+enum class Precision : std::uint8_t { kDouble, kFloat };
+
+[[nodiscard]] constexpr const char* to_string(Precision p) noexcept {
+  return p == Precision::kFloat ? "float" : "double";
+}
+// "float" or "double"; nullopt otherwise.
+[[nodiscard]] std::optional<Precision> parse_precision(std::string_view name) noexcept;
+
+// The scenario's fault kind names ("stuck_pickoff", ...), FaultKind::kNone excluded.
+[[nodiscard]] const char* fault_kind_name(FaultKind kind) noexcept;
+[[nodiscard]] std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept;
+
+[[nodiscard]] const char* request_name(ModeRequest r) noexcept;
+
+class ScenarioError : public std::runtime_error {
+ public:
+  ScenarioError(std::string file, std::string field, std::string reason);
+  [[nodiscard]] const std::string& file() const noexcept { return file_; }
+  [[nodiscard]] const std::string& field() const noexcept { return field_; }
+  [[nodiscard]] const std::string& reason() const noexcept { return reason_; }
+
+ private:
+  std::string file_, field_, reason_;
+};
+
+// One entry of the guidance schedule, applied at the first tick at or after t_s.
+struct GuidanceEvent {
+  double t_s{0};
+  std::uint64_t tick{0};                      // round(t_s / tick_s)
+  ModeRequest request{ModeRequest::kNone};    // issued once, in that tick
+  std::optional<Eigen::Vector2d> slew_rate_rad_s;  // held from then on when given
+  std::optional<bool> nav_valid;                   // held from then on when given
+};
+
+struct RunSpec {
+  double tick_s{0};
+  std::string tick_field{"run.tick_s"};   // the key the tick came from (tick_s or rate_hz)
+  std::uint64_t ticks{0};                 // number of ticks after tick 0 (rows = ticks + 1)
+  Precision precision{Precision::kDouble};
+};
+
+struct Scenario {
+  std::string file;          // where it was read from (for messages)
+  std::string description;
+  RunSpec run{};
+  GyroComponentConfig<double> component{};  // tick_s = run.tick_s
+  SimulatedGyroConfig<double> gyro{};       // tick_s = run.tick_s; faults in file order
+  std::size_t fault_count{0};
+  BodyProfile body{};
+  std::vector<GuidanceEvent> guidance;      // sorted by time
+};
+
+// Parses and checks the schema and the values the component and stub do not check
+// themselves (times, names, counts). Throws ScenarioError; `file` names the source.
+[[nodiscard]] Scenario parse_scenario(std::string_view json_text, const std::string& file);
+
+// Reads the file and parses it (unreadable file: ScenarioError with field "(file)").
+[[nodiscard]] Scenario read_scenario(const std::filesystem::path& path);
+
+// The JSON path of a field the component's configure() named ("max_torque" ->
+// "component.max_torque"), and of one the stub's configure() named ("pickoff.lsb_rad" ->
+// "gyro.pickoff.lsb_rad", "faults[1].axis" -> "gyro.faults[1].axis").
+[[nodiscard]] std::string component_field_path(const Scenario& s, std::string_view field);
+[[nodiscard]] std::string gyro_field_path(const Scenario& s, std::string_view field);
+
+}  // namespace gyro::sil

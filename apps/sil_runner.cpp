@@ -1,0 +1,355 @@
+#include "sil_runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "body_motion.hpp"
+#include "gyro/gyro_component.hpp"
+#include "gyro/simulated_gyro.hpp"
+
+namespace gyro::sil {
+
+namespace {
+
+// Required columns first (kRequiredColumns), then the extras; write_row() follows this order.
+constexpr std::array<std::string_view, 37> kColumns = {
+    "t", "mode", "gimbal_pitch", "gimbal_yaw", "gimbal_pitch_meas", "gimbal_yaw_meas", "theta_rate", "psi_rate",
+    "torque_pitch", "torque_yaw", "flags",
+    // extras
+    "tick", "gimbal_pitch_pred", "gimbal_yaw_pred", "residual_pitch", "residual_yaw", "theta_rate_true",
+    "psi_rate_true", "rate_cmd_pitch", "rate_cmd_yaw", "slew_cmd_pitch", "slew_cmd_yaw", "request",
+    "nutation_pitch", "nutation_yaw", "nutation_pitch_true", "nutation_yaw_true", "cone_true", "spin_hz",
+    "spin_hz_true", "torque_applied_pitch", "torque_applied_yaw", "body_pitch_rate", "body_yaw_rate",
+    "truth_flags", "active_faults", "step_status"};
+
+static_assert([] {
+  for (std::size_t i = 0; i < kRequiredColumns.size(); ++i) {
+    if (kColumns[i] != kRequiredColumns[i]) return false;
+  }
+  return true;
+}());
+
+constexpr std::array<std::string_view, kComponentFlagCount> kFlagNames = {
+    "gimbal_limit",      "small_angle_exceeded", "nutation_unresolved", "pickoff_invalid",
+    "pickoff_stale",     "pickoff_jump",         "residual_fault",      "torquer_saturated",
+    "spin_low",          "torquer_write_failed", "nav_invalid",         "command_rejected",
+    "tick_skipped",      "gimbal_stop_protect",  "fault_latched"};
+
+template <typename T>
+Vector2<T> v2(const Eigen::Vector2d& v) {
+  return Vector2<T>(static_cast<T>(v(0)), static_cast<T>(v(1)));
+}
+
+template <typename T>
+GyroModelConfig<T> cast_config(const GyroModelConfig<double>& d) {
+  const auto c = [](double v) { return static_cast<T>(v); };
+  const auto axis = [&](const AxisErrorSources<double>& e) {
+    AxisErrorSources<T> a;
+    a.static_drift_rad_s = c(e.static_drift_rad_s);
+    a.in_plane_erection_1_s = c(e.in_plane_erection_1_s);
+    a.cross_plane_erection_1_s = c(e.cross_plane_erection_1_s);
+    a.g_sensitive_drift_rad_s = c(e.g_sensitive_drift_rad_s);
+    a.torquer_cross_coupling = c(e.torquer_cross_coupling);
+    a.coulomb_friction_rad_s = c(e.coulomb_friction_rad_s);
+    return a;
+  };
+  GyroModelConfig<T> m;
+  m.pitch_inertia = c(d.pitch_inertia);
+  m.yaw_inertia = c(d.yaw_inertia);
+  m.spin_inertia = c(d.spin_inertia);
+  m.friction = c(d.friction);
+  m.gimbal_cone_limit_rad = c(d.gimbal_cone_limit_rad);
+  m.pitch_gimbal_limit_rad = c(d.pitch_gimbal_limit_rad);
+  m.yaw_gimbal_limit_rad = c(d.yaw_gimbal_limit_rad);
+  m.max_pitch_rate_rad_s = c(d.max_pitch_rate_rad_s);
+  m.max_yaw_rate_rad_s = c(d.max_yaw_rate_rad_s);
+  m.small_angle_limit_rad = c(d.small_angle_limit_rad);
+  m.gravity = c(d.gravity);
+  m.errors.pitch = axis(d.errors.pitch);
+  m.errors.yaw = axis(d.errors.yaw);
+  return m;
+}
+
+template <typename T>
+SimulatedGyroConfig<T> cast_config(const SimulatedGyroConfig<double>& d) {
+  const auto c = [](double v) { return static_cast<T>(v); };
+  SimulatedGyroConfig<T> s;
+  s.gyro = cast_config<T>(d.gyro);
+  s.tick_s = c(d.tick_s);
+  s.spin_hz = c(d.spin_hz);
+  s.spin_down_time_constant_s = c(d.spin_down_time_constant_s);
+  s.has_spin_readback = d.has_spin_readback;
+  s.pickoff.lsb_rad = c(d.pickoff.lsb_rad);
+  s.pickoff.bias_rad = v2<T>(d.pickoff.bias_rad);
+  s.pickoff.lag_s = c(d.pickoff.lag_s);
+  s.pickoff.noise_rad = c(d.pickoff.noise_rad);
+  s.pickoff.range_rad = c(d.pickoff.range_rad);
+  s.torquer.scale_factor = v2<T>(d.torquer.scale_factor);
+  s.torquer.max_torque = c(d.torquer.max_torque);
+  s.gimbal_stop_rad = c(d.gimbal_stop_rad);
+  s.seed = d.seed;
+  for (std::size_t i = 0; i < s.faults.size(); ++i) {
+    const FaultEvent<double>& f = d.faults[i];
+    s.faults[i] = FaultEvent<T>{f.kind, f.start_tick, f.duration_ticks, f.axis, c(f.magnitude)};
+  }
+  return s;
+}
+
+template <typename T>
+GyroComponentConfig<T> cast_config(const GyroComponentConfig<double>& d) {
+  const auto c = [](double v) { return static_cast<T>(v); };
+  GyroComponentConfig<T> g;
+  g.tick_s = c(d.tick_s);
+  g.pitch_inertia = c(d.pitch_inertia);
+  g.yaw_inertia = c(d.yaw_inertia);
+  g.spin_inertia = c(d.spin_inertia);
+  g.friction = c(d.friction);
+  g.nominal_spin_hz = c(d.nominal_spin_hz);
+  g.min_spin_hz = c(d.min_spin_hz);
+  g.use_spin_readback = d.use_spin_readback;
+  g.max_pitch_rate_rad_s = c(d.max_pitch_rate_rad_s);
+  g.max_yaw_rate_rad_s = c(d.max_yaw_rate_rad_s);
+  g.max_torque = c(d.max_torque);
+  g.friction_compensation = d.friction_compensation;
+  g.cage_gain_1_s = c(d.cage_gain_1_s);
+  g.gimbal_cone_limit_rad = c(d.gimbal_cone_limit_rad);
+  g.gimbal_stop_margin_rad = c(d.gimbal_stop_margin_rad);
+  g.small_angle_limit_rad = c(d.small_angle_limit_rad);
+  g.pickoff_range_rad = c(d.pickoff_range_rad);
+  g.max_pickoff_step_rad = c(d.max_pickoff_step_rad);
+  g.estimator_gain = c(d.estimator_gain);
+  g.residual_limit_rad = c(d.residual_limit_rad);
+  g.residual_persistence_ticks = d.residual_persistence_ticks;
+  g.invalid_persistence_ticks = d.invalid_persistence_ticks;
+  g.spin_low_persistence_ticks = d.spin_low_persistence_ticks;
+  g.torquer_fail_persistence_ticks = d.torquer_fail_persistence_ticks;
+  g.uncage_settle_ticks = d.uncage_settle_ticks;
+  return g;
+}
+
+std::string refusal(const char* who, Status st, Precision p) {
+  std::string r = to_string(st);
+  r += " (refused by ";
+  r += who;
+  r += "::configure";
+  if (p == Precision::kFloat) r += " in float";
+  r += ")";
+  return r;
+}
+
+// Configures both sides; a refusal names the scenario's JSON field.
+template <typename T>
+void configure_both(const Scenario& s, SimulatedGyro<T>& stub, GyroComponent<T>& comp) {
+  const ConfigCheck g = stub.configure(cast_config<T>(s.gyro));
+  if (!g.ok()) {
+    throw ScenarioError(s.file, gyro_field_path(s, g.field ? g.field : "(unnamed)"),
+                        refusal("SimulatedGyro", g.status, s.run.precision));
+  }
+  const ConfigCheck c = comp.configure(cast_config<T>(s.component));
+  if (!c.ok()) {
+    throw ScenarioError(s.file, component_field_path(s, c.field ? c.field : "(unnamed)"),
+                        refusal("GyroComponent", c.status, s.run.precision));
+  }
+}
+
+// The guidance schedule, replayed tick by tick: requests fire once, commands are held.
+class GuidancePlayer {
+ public:
+  explicit GuidancePlayer(const std::vector<GuidanceEvent>& events) : events_(events) {}
+
+  // Applies every event due at `tick`; returns the request of this tick (the last one due).
+  ModeRequest at(std::uint64_t tick) {
+    ModeRequest request = ModeRequest::kNone;
+    while (next_ < events_.size() && events_[next_].tick <= tick) {
+      const GuidanceEvent& e = events_[next_++];
+      if (e.request != ModeRequest::kNone) request = e.request;
+      if (e.slew_rate_rad_s) slew_ = *e.slew_rate_rad_s;
+      if (e.nav_valid) nav_valid_ = *e.nav_valid;
+    }
+    return request;
+  }
+  [[nodiscard]] const Eigen::Vector2d& slew() const { return slew_; }
+  [[nodiscard]] bool nav_valid() const { return nav_valid_; }
+
+ private:
+  const std::vector<GuidanceEvent>& events_;
+  std::size_t next_{0};
+  Eigen::Vector2d slew_{Eigen::Vector2d::Zero()};
+  bool nav_valid_{true};
+};
+
+class Progress {
+ public:
+  Progress(const RunOptions& o, std::uint64_t ticks) : o_(o), ticks_(ticks) {}
+  void tick(std::uint64_t k, double t) {
+    if (!o_.progress || o_.progress_out == nullptr) return;
+    const std::uint64_t decile = ticks_ == 0 ? 10 : (k * 10) / ticks_;
+    if (decile == last_decile_) return;
+    last_decile_ = decile;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (elapsed < 1.0 && !printed_) return;  // short runs stay quiet
+    printed_ = true;
+    std::fprintf(o_.progress_out, "%s: %3llu%% (tick %llu of %llu, t = %.4f s, %.1f s elapsed)\n", o_.label.c_str(),
+                 static_cast<unsigned long long>(decile * 10), static_cast<unsigned long long>(k),
+                 static_cast<unsigned long long>(ticks_), t, elapsed);
+    std::fflush(o_.progress_out);
+  }
+  [[nodiscard]] double elapsed_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  const RunOptions& o_;
+  std::uint64_t ticks_;
+  std::uint64_t last_decile_{0};
+  bool printed_{false};
+  std::chrono::steady_clock::time_point start_{std::chrono::steady_clock::now()};
+};
+
+template <typename T>
+RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) {
+  SimulatedGyro<T> stub;
+  GyroComponent<T> comp(stub);
+  configure_both<T>(s, stub, comp);
+
+  RunSummary sum;
+  sum.precision = s.run.precision;
+  sum.ticks = s.run.ticks;
+
+  BodyMotion body(s.body, s.run.tick_s);
+  GuidancePlayer guidance(s.guidance);
+  Progress progress(options, s.run.ticks);
+
+  const Status started = stub.start(body.R_earth_to_body().cast<T>(), v2<T>(body.rate_rad_s()));
+  if (started != Status::kOk) throw RunError(std::string("SimulatedGyro::start refused: ") + to_string(started));
+  const Status active = comp.activate();
+  if (active != Status::kOk) throw RunError(std::string("GyroComponent::activate refused: ") + to_string(active));
+
+  csv.header(csv_columns());
+  for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
+    if (k > 0) {
+      body.advance();
+      const Status st = stub.advance(k, body.R_earth_to_body().cast<T>(), v2<T>(body.accel()));
+      if (st != Status::kOk) {
+        throw RunError("tick " + std::to_string(k) + ": SimulatedGyro::advance refused: " + to_string(st));
+      }
+    }
+    GuidanceInput<T> in;
+    in.request = guidance.at(k);
+    in.slew_rate_cmd_rad_s = v2<T>(guidance.slew());
+    in.nav_valid = guidance.nav_valid();
+    in.R_earth_to_body = body.R_earth_to_body().cast<T>();
+    in.body_rate_rad_s = v2<T>(body.rate_rad_s());
+    const Status step = comp.step(k, in);
+    if (step != Status::kOk) ++sum.refused_steps;
+
+    const GyroTelemetry<T>& tm = comp.telemetry();
+    const GyroModel<T>& truth = stub.truth();
+    sum.flags_seen |= tm.flags;
+    if (stub.at_gimbal_stop()) ++sum.gimbal_stop_hits;
+    sum.max_abs_gimbal_rad = std::max({sum.max_abs_gimbal_rad, std::abs(static_cast<double>(truth.gimbal_pitch_rad())),
+                                       std::abs(static_cast<double>(truth.gimbal_yaw_rad()))});
+
+    const auto num = [&](T v) {
+      const double d = static_cast<double>(v);
+      if (!std::isfinite(d)) ++sum.nonfinite_values;
+      csv.number(d);
+    };
+    const double t = body.time_s();
+    csv.number(t).text(to_string(tm.mode));
+    num(truth.gimbal_pitch_rad());
+    num(truth.gimbal_yaw_rad());
+    num(tm.gimbal_measured_rad(0));
+    num(tm.gimbal_measured_rad(1));
+    num(tm.precession_rate_rad_s(0));
+    num(tm.precession_rate_rad_s(1));
+    num(tm.torque_cmd(0));
+    num(tm.torque_cmd(1));
+    csv.integer(tm.flags);
+    // extras
+    csv.integer(k);
+    num(tm.gimbal_predicted_rad(0));
+    num(tm.gimbal_predicted_rad(1));
+    num(tm.residual_rad(0));
+    num(tm.residual_rad(1));
+    num(truth.rate_rad_s()(0));
+    num(truth.rate_rad_s()(1));
+    num(tm.rate_cmd_rad_s(0));
+    num(tm.rate_cmd_rad_s(1));
+    num(in.slew_rate_cmd_rad_s(0));
+    num(in.slew_rate_cmd_rad_s(1));
+    csv.text(request_name(in.request));
+    num(tm.nutation_amplitude_rad(0));
+    num(tm.nutation_amplitude_rad(1));
+    num(truth.nutation_amplitude_rad()(0));
+    num(truth.nutation_amplitude_rad()(1));
+    num(truth.gimbal_cone_rad());
+    num(tm.spin_hz);
+    num(stub.spin_hz());
+    num(stub.applied_torque()(0));
+    num(stub.applied_torque()(1));
+    num(in.body_rate_rad_s(0));
+    num(in.body_rate_rad_s(1));
+    csv.integer(truth.flags() | (stub.at_gimbal_stop() ? 4u : 0u));
+    csv.integer(stub.active_faults());
+    csv.integer(static_cast<std::uint64_t>(step));
+    csv.end_row();
+    if (!csv.ok()) throw RunError("writing the CSV failed at tick " + std::to_string(k));
+
+    progress.tick(k, t);
+  }
+
+  sum.rows = csv.rows();
+  sum.final_mode = comp.mode();
+  sum.counters = comp.telemetry().counters;
+  sum.wall_s = progress.elapsed_s();
+  return sum;
+}
+
+}  // namespace
+
+std::span<const std::string_view> csv_columns() noexcept { return kColumns; }
+
+int csv_column(std::string_view name) noexcept {
+  for (std::size_t i = 0; i < kColumns.size(); ++i) {
+    if (kColumns[i] == name) return static_cast<int>(i) + 1;
+  }
+  return 0;
+}
+
+void check_configs(const Scenario& s) {
+  if (s.run.precision == Precision::kFloat) {
+    SimulatedGyro<float> stub;
+    GyroComponent<float> comp(stub);
+    configure_both<float>(s, stub, comp);
+  } else {
+    SimulatedGyro<double> stub;
+    GyroComponent<double> comp(stub);
+    configure_both<double>(s, stub, comp);
+  }
+}
+
+Scenario load_scenario(const std::filesystem::path& path, std::optional<Precision> precision) {
+  Scenario s = read_scenario(path);
+  if (precision) s.run.precision = *precision;
+  check_configs(s);
+  return s;
+}
+
+RunSummary run_scenario(const Scenario& s, CsvWriter& csv, const RunOptions& options) {
+  if (s.run.precision == Precision::kFloat) return run_in<float>(s, csv, options);
+  return run_in<double>(s, csv, options);
+}
+
+std::string flag_names(std::uint32_t flags) {
+  std::string out;
+  for (std::size_t i = 0; i < kFlagNames.size(); ++i) {
+    if ((flags & (1u << i)) == 0u) continue;
+    if (!out.empty()) out += '|';
+    out += kFlagNames[i];
+  }
+  return out;
+}
+
+}  // namespace gyro::sil

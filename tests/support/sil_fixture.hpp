@@ -1,0 +1,144 @@
+// Test fixture: the flight component against the SIL stub, with a body turning at constant
+// rates, one tick at a time. A small SI seeker gyro at a 2 kHz tick.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "gyro/gyro_component.hpp"
+#include "gyro/simulated_gyro.hpp"
+
+namespace gyro::testing {
+
+template <typename T>
+struct SeekerGyro {
+  static constexpr T kTick = T(5e-4);     // 2 kHz
+  static constexpr T kJ = T(2e-5);        // kg m^2, pitch and yaw
+  static constexpr T kJ0 = T(3e-5);       // spin axis
+  static constexpr T kFriction = T(4e-4); // alpha = f/J = 20 1/s: nutation decays in 50 ms
+  static constexpr T kSpinHz = T(400);
+
+  static GyroComponentConfig<T> component() {
+    GyroComponentConfig<T> c;
+    c.tick_s = kTick;
+    c.pitch_inertia = kJ;
+    c.yaw_inertia = kJ;
+    c.spin_inertia = kJ0;
+    c.friction = kFriction;
+    c.nominal_spin_hz = kSpinHz;
+    c.min_spin_hz = T(300);
+    c.max_pitch_rate_rad_s = T(1);
+    c.max_yaw_rate_rad_s = T(1);
+    c.max_torque = T(0.1);  // H = 0.0754 N m s: 1.3 rad/s of precession
+    c.cage_gain_1_s = T(20);
+    c.gimbal_cone_limit_rad = T(0.5);
+    c.gimbal_stop_margin_rad = T(0.05);
+    c.pickoff_range_rad = T(0.6);
+    c.max_pickoff_step_rad = T(5e-3);
+    c.estimator_gain = T(0.005);
+    c.residual_limit_rad = T(2e-3);
+    c.residual_persistence_ticks = 20;
+    c.invalid_persistence_ticks = 10;
+    c.spin_low_persistence_ticks = 50;
+    c.torquer_fail_persistence_ticks = 5;
+    c.uncage_settle_ticks = 400;
+    return c;
+  }
+
+  static SimulatedGyroConfig<T> stub() {
+    SimulatedGyroConfig<T> s;
+    s.gyro.pitch_inertia = kJ;
+    s.gyro.yaw_inertia = kJ;
+    s.gyro.spin_inertia = kJ0;
+    s.gyro.friction = kFriction;
+    s.gyro.gimbal_cone_limit_rad = T(0.5);
+    s.gyro.max_pitch_rate_rad_s = T(10);
+    s.gyro.max_yaw_rate_rad_s = T(10);
+    s.tick_s = kTick;
+    s.spin_hz = kSpinHz;
+    s.has_spin_readback = true;
+    s.gimbal_stop_rad = T(0.55);
+    s.seed = 1;
+    return s;
+  }
+};
+
+template <typename T>
+class Sil {
+ public:
+  SimulatedGyro<T> gyro;
+  GyroComponent<T> component{gyro};
+  GuidanceInput<T> guidance;
+  Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};
+  Vector2<T> body_rate{Vector2<T>::Zero()};  // (pitch q, yaw r)
+  std::uint64_t tick{0};
+  Status last{Status::kOk};
+
+  bool start(const GyroComponentConfig<T>& c = SeekerGyro<T>::component(),
+             const SimulatedGyroConfig<T>& s = SeekerGyro<T>::stub()) {
+    tick_s_ = c.tick_s;
+    return gyro.configure(s).ok() && gyro.start(R_earth_to_body, body_rate) == Status::kOk &&
+           component.configure(c).ok() && component.activate() == Status::kOk;
+  }
+
+  // One tick: the body moves, the stub advances to it, the component runs.
+  Status step(ModeRequest request = ModeRequest::kNone) {
+    const Matrix3<T> turn = frame_rotation_z(body_rate(1) * tick_s_) * frame_rotation_y(body_rate(0) * tick_s_);
+    R_earth_to_body = turn * R_earth_to_body;
+    ++tick;
+    const Status adv = gyro.advance(tick, R_earth_to_body, Vector2<T>::Zero());
+    if (adv != Status::kOk) return adv;
+    guidance.request = request;
+    guidance.nav_valid = true;
+    guidance.R_earth_to_body = R_earth_to_body;
+    guidance.body_rate_rad_s = body_rate;
+    last = component.step(tick, guidance);
+    return last;
+  }
+
+  void run(int ticks) {
+    for (int k = 0; k < ticks; ++k) (void)step();
+  }
+
+  // Caged for `caged` ticks, then uncaged and settled into free mode.
+  bool uncage(int caged = 200) {
+    run(caged);
+    (void)step(ModeRequest::kUncage);
+    run(static_cast<int>(SeekerGyro<T>::component().uncage_settle_ticks));
+    return component.mode() == GyroMode::kFree;
+  }
+
+  [[nodiscard]] const GyroTelemetry<T>& tm() const { return component.telemetry(); }
+
+ private:
+  T tick_s_{};
+};
+
+template <typename T>
+[[nodiscard]] bool telemetry_finite(const GyroTelemetry<T>& t) {
+  return all_finite(t.gimbal_measured_rad, t.gimbal_predicted_rad, t.residual_rad, t.precession_rate_rad_s,
+                    t.rate_cmd_rad_s, t.torque_cmd, t.nutation_amplitude_rad, t.spin_hz) &&
+         t.attitude_gyro_to_earth.coeffs().allFinite();
+}
+
+// Field by field, bit for bit (memcmp of the whole struct would compare padding too).
+template <typename A>
+[[nodiscard]] bool same_bits(const A& a, const A& b) {
+  return std::memcmp(&a, &b, sizeof(A)) == 0;
+}
+template <typename T, int R, int C>
+[[nodiscard]] bool same_bits(const Eigen::Matrix<T, R, C>& a, const Eigen::Matrix<T, R, C>& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(T) * static_cast<std::size_t>(R * C)) == 0;
+}
+template <typename T>
+[[nodiscard]] bool identical(const GyroTelemetry<T>& a, const GyroTelemetry<T>& b) {
+  return a.tick == b.tick && a.mode == b.mode && a.flags == b.flags && a.counters == b.counters &&
+         same_bits(a.gimbal_measured_rad, b.gimbal_measured_rad) &&
+         same_bits(a.gimbal_predicted_rad, b.gimbal_predicted_rad) && same_bits(a.residual_rad, b.residual_rad) &&
+         same_bits(a.attitude_gyro_to_earth.coeffs(), b.attitude_gyro_to_earth.coeffs()) &&
+         same_bits(a.precession_rate_rad_s, b.precession_rate_rad_s) &&
+         same_bits(a.rate_cmd_rad_s, b.rate_cmd_rad_s) && same_bits(a.torque_cmd, b.torque_cmd) &&
+         same_bits(a.nutation_amplitude_rad, b.nutation_amplitude_rad) && same_bits(a.spin_hz, b.spin_hz);
+}
+
+}  // namespace gyro::testing

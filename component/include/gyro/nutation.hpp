@@ -1,21 +1,28 @@
 // Nutation amplitude: the size of the angular wobble that rides on the steady precession.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gyro/rotor_parameters.hpp"
 
 namespace gyro {
 
 // Per-axis amplitude (rad) of the nutation that the rates `rate_rad_s` excite under a
-// constant `torque`: the envelope of the angle's transient, exp(A t) A^-1 (w - w_ss).
-//
-// Underdamped, this is the report's eq 15 amplitude sqrt((k1^2 + k2^2)/(alpha^2 + beta^2))
-// as long as beta >= e*alpha (the lightly damped gyros the report treats). The envelope
-// factor 1/beta is capped at the exact bound 1/(e*alpha) of t*exp(-alpha t) and, overdamped,
-// at 1/(e*(alpha - gamma)), so the amplitude stays finite and continuous through critical
-// damping, where the report's formula divides by zero. Without spin and friction (f = H = 0)
-// there is no transient to nutate: the amplitude is 0.
+// constant `torque`: an upper bound, for all t >= 0, of the angle's transient
+// exp(A t) y with y = A^-1 (w - w_ss). With exp(A t) = c(t) I + s(t) N, the transient of
+// axis i is c(t) y_i + s(t) (N y)_i, and two bounds hold:
+//   underdamped  |c| <= e^-alpha t, |s| <= e^-alpha t / beta:   hypot(y_i, (N y)_i / beta),
+//                the report's eq 15 amplitude sqrt((k1^2 + k2^2)/(alpha^2 + beta^2));
+//   every regime |c| <= 1, |s| <= S:   |y_i| + S |(N y)_i|, with S = 1/max(beta, e*alpha)
+//                (the bound of t exp(-alpha t)), or 1/(e*(alpha - gamma)) when overdamped.
+// The amplitude is the smaller of the two. For beta >= e*alpha (the lightly damped gyros the
+// report treats) that is the report's formula; towards critical damping, where the report's
+// divides by zero, the second takes over, finite and continuous through critical damping and
+// into overdamping. (Capping 1/beta inside the hypot instead is not a bound: near critical
+// the transient exceeded it by up to 7.6%.) Without spin and friction (f = H = 0) there is
+// no transient to nutate: the amplitude is 0.
 template <typename T>
 [[nodiscard]] Status nutation_amplitude(const RotorParameters<T>& prm, const Vector2<T>& rate_rad_s,
                                         const Vector2<T>& torque,
@@ -38,15 +45,20 @@ template <typename T>
   const Vector2<T> y0 = -(n * u0 + m.alpha * u0) / m.omega0_sq;
   const Vector2<T> ny0 = n * y0;
   constexpr T kE = T(2.71828182845904523536L);
-  T envelope;  // sup over t >= 0 of |exp(-alpha t) sin(beta t)/beta| (or its bound)
+  Vector2<T> amp = Vector2<T>::Zero();
   if (m.beta_sq > T(0)) {
     const T beta = std::sqrt(m.beta_sq);
-    envelope = (beta >= kE * m.alpha) ? T(1) / beta : T(1) / (kE * m.alpha);
+    const T s_max = T(1) / std::max(beta, kE * m.alpha);  // >= |exp(-alpha t) sin(beta t)/beta|
+    for (int i = 0; i < 2; ++i) {
+      const T by_rotation = std::hypot(y0(i), ny0(i) / beta);  // may be inf as beta -> 0
+      const T by_sum = std::abs(y0(i)) + s_max * std::abs(ny0(i));
+      amp(i) = (by_rotation < by_sum) ? by_rotation : by_sum;
+    }
   } else {
     const T gamma = std::sqrt(-m.beta_sq);
-    envelope = (m.alpha + gamma) / (kE * m.omega0_sq);  // 1/(e (alpha - gamma))
+    const T s_max = (m.alpha + gamma) / (kE * m.omega0_sq);  // 1/(e (alpha - gamma))
+    for (int i = 0; i < 2; ++i) amp(i) = std::abs(y0(i)) + s_max * std::abs(ny0(i));
   }
-  const Vector2<T> amp(std::hypot(y0(0), envelope * ny0(0)), std::hypot(y0(1), envelope * ny0(1)));
   if (!all_finite(amp)) return Status::kNumericalOverflow;
   amplitude_rad_out = amp;
   return Status::kOk;

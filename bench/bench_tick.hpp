@@ -26,7 +26,8 @@ namespace gyro::bench {
 // inside a function named gyro_bench_measured_ticks_*; returns a value of the final state.
 // Kinds: advance_double, advance_float, advance_unchecked_double, advance_lean_double,
 // advance_lean_float, propagate_double,
-// propagate_double_100hz, make_transition_double, make_transition_double_100hz.
+// propagate_double_100hz, make_transition_double, make_transition_double_100hz, and, when
+// gyro/gyro_model.hpp exists, model_double and model_float (GyroModel<T>::step_torque).
 double run_ticks(const std::string& kind, const Case& c, long count);
 
 }  // namespace gyro::bench

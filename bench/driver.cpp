@@ -15,7 +15,13 @@
 // `ticks`: COUNT exact steps at the report's gyro, dt = 1 ms, KIND one of
 // advance_double, advance_float, advance_unchecked_double, advance_lean_double,
 // advance_lean_float, propagate_double,
-// propagate_double_100hz, make_transition_double, make_transition_double_100hz.
+// propagate_double_100hz, make_transition_double, make_transition_double_100hz,
+// model_double, model_float (the component's full tick, GyroModel<T>::step_torque).
+//
+// `model_sample`: the per-tick spread of the component's full tick. Run as
+//   valgrind --tool=callgrind --instr-atstart=no --collect-atstart=no
+//            gyro_bench_driver model_sample double|float COUNT EVERY
+// it runs COUNT ticks and counts every EVERY-th tick on its own (one callgrind dump each).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -23,6 +29,12 @@
 
 #include "bench_problem.hpp"
 #include "bench_tick.hpp"
+#include "model_workload.hpp"
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define GYRO_BENCH_HAVE_CALLGRIND 1
+#endif
 
 using gyro::RotorState;
 using gyro::RotorTransition;
@@ -125,9 +137,43 @@ int ticks(int argc, char** argv) {
   return 0;
 }
 
+#if GYRO_BENCH_HAVE_MODEL && GYRO_BENCH_HAVE_CALLGRIND
+template <typename T>
+int model_sample_run(long count, long every) {
+  gyro::bench::ModelWorkload<T> w;
+  int bad = 0;
+  for (long i = 0; i < count; ++i) {
+    if (i % every == 0) {
+      CALLGRIND_START_INSTRUMENTATION;
+      CALLGRIND_ZERO_STATS;
+      CALLGRIND_TOGGLE_COLLECT;
+      bad |= static_cast<int>(w.step());
+      CALLGRIND_TOGGLE_COLLECT;
+      CALLGRIND_DUMP_STATS;
+      CALLGRIND_STOP_INSTRUMENTATION;
+    } else {
+      bad |= static_cast<int>(w.step());
+    }
+  }
+  std::printf("model_sample x %ld: %.17g\n", count, static_cast<double>(w.output()));
+  return bad;
+}
+
+int model_sample(int argc, char** argv) {
+  if (argc < 5) gyro::bench::fail("usage: model_sample double|float COUNT EVERY");
+  const std::string type = argv[2];
+  const long count = to_long(argv[3]), every = to_long(argv[4]);
+  return (type == "float") ? model_sample_run<float>(count, every)
+                           : model_sample_run<double>(count, every);
+}
+#else
+int model_sample(int, char**) { gyro::bench::fail("model_sample needs gyro_model.hpp and callgrind.h"); }
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::strcmp(argv[1], "model_sample") == 0) return model_sample(argc, argv);
   if (argc >= 2 && std::strcmp(argv[1], "second") == 0) return second(argc, argv);
   if (argc >= 2 && std::strcmp(argv[1], "ticks") == 0) return ticks(argc, argv);
   std::fprintf(stderr,

@@ -8,7 +8,7 @@
 // by the code: the code's own cost is the same every tick (see the instruction counts).
 //
 // The component's full tick (dynamics + attitude + gimbal angles, gyro/gyro_model.hpp) is
-// timed here too once that header exists: see GYRO_BENCH_COMPONENT_TICK below.
+// timed here too when that header exists: see GYRO_BENCH_COMPONENT_TICK below.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bench_problem.hpp"
+#include "model_workload.hpp"
 
 namespace gyro::bench {
 namespace {
@@ -83,8 +84,20 @@ int run(long ticks) {
           asm volatile("" ::: "memory");
         }));
 
-  // GYRO_BENCH_COMPONENT_TICK: the component's full tick, float and double, goes here
-  // (GyroModel<T>::step from gyro/gyro_model.hpp) when that header exists.
+  // GYRO_BENCH_COMPONENT_TICK: the component's full tick (GyroModel<T>::step_torque from
+  // gyro/gyro_model.hpp), float and double, when that header exists.
+#if GYRO_BENCH_HAVE_MODEL
+  ModelWorkload<double> md;
+  print("model_double", time_ticks(ticks, [&] {
+          bad |= static_cast<int>(md.step());
+          asm volatile("" ::: "memory");
+        }));
+  ModelWorkload<float> mf;
+  print("model_float", time_ticks(ticks, [&] {
+          bad |= static_cast<int>(mf.step());
+          asm volatile("" ::: "memory");
+        }));
+#endif
 
   if (bad != 0) fail("a tick returned an error status");
   return 0;

@@ -3,6 +3,8 @@
 // and stored back every tick as in a real component, and nothing is hoisted out of the loop.
 #include "bench_tick.hpp"
 
+#include "model_workload.hpp"
+
 #include <cmath>
 #include <cstdio>
 
@@ -173,6 +175,22 @@ __attribute__((noinline)) int gyro_bench_measured_ticks_make_transition_double(
   return bad;
 }
 
+#if GYRO_BENCH_HAVE_MODEL
+__attribute__((noinline)) int gyro_bench_measured_ticks_model_double(
+    gyro::bench::ModelWorkload<double>* w, long count) {
+  int bad = 0;
+  for (long i = 0; i < count; ++i) bad |= static_cast<int>(w->step());
+  return bad;
+}
+
+__attribute__((noinline)) int gyro_bench_measured_ticks_model_float(
+    gyro::bench::ModelWorkload<float>* w, long count) {
+  int bad = 0;
+  for (long i = 0; i < count; ++i) bad |= static_cast<int>(w->step());
+  return bad;
+}
+#endif
+
 }  // extern "C"
 
 namespace gyro::bench {
@@ -218,6 +236,16 @@ double run_ticks(const std::string& kind, const Case& c, long count) {
     RotorTransition<double> tr;
     bad = gyro_bench_measured_ticks_make_transition_double(&c.prm, dt, &tr, count);
     out = tr.rate_from_rate(0, 0);
+#if GYRO_BENCH_HAVE_MODEL
+  } else if (kind == "model_double") {
+    ModelWorkload<double> w;
+    bad = gyro_bench_measured_ticks_model_double(&w, count);
+    out = w.output();
+  } else if (kind == "model_float") {
+    ModelWorkload<float> w;
+    bad = gyro_bench_measured_ticks_model_float(&w, count);
+    out = static_cast<double>(w.output());
+#endif
   } else {
     fail("unknown tick kind");
   }

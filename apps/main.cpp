@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -40,8 +41,18 @@ PlotRequest gimbal_plot(const fs::path& csv, const fs::path& png, const Scenario
   PlotRequest r;
   r.csv = csv;
   r.png = png;
-  r.title = fs::path(s.file).filename().string() + (s.description.empty() ? "" : " - " + s.description) +
-            " (" + to_string(s.run.precision) + ")";
+  r.title = fs::path(s.file).filename().string() + " (" + to_string(s.run.precision) + ")";
+  // The description, wrapped at word boundaries.
+  std::string line;
+  std::istringstream words(s.description);
+  for (std::string w; words >> w;) {
+    if (!line.empty() && line.size() + 1 + w.size() > 110) {
+      r.title += "\n" + line;
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  if (!line.empty()) r.title += "\n" + line;
   r.time_column = csv_column("t");
   const char* true_style = "lw 3 lc rgb '#9a9a9a'";
   const char* meas_style = "lc rgb '#d62728'";

@@ -24,10 +24,24 @@ std::string gp_quote(std::string_view s) {
   std::string out = "'";
   for (char c : s) {
     if (c == '\'') out += '\'';
-    if (c == '\n' || c == '\r') c = ' ';
+    if (c == '\n' || c == '\r') c = ' ';  // gp_lines() splits lines first
     out += c;
   }
   out += '\'';
+  return out;
+}
+
+// A title of several lines ('\n' in `s`) as a gnuplot string expression.
+std::string gp_lines(std::string_view s) {
+  std::string out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t nl = s.find('\n', start);
+    out += gp_quote(s.substr(start, nl == std::string_view::npos ? std::string_view::npos : nl - start));
+    if (nl == std::string_view::npos) break;
+    out += " . \"\\n\" . ";
+    start = nl + 1;
+  }
   return out;
 }
 
@@ -83,9 +97,9 @@ std::string gnuplot_script(const PlotRequest& r) {
     << "}\n"
     << "set output " << gp_quote(r.png.string()) << "\n"
     << "set grid\n"
-    << "set key top right\n"
+    << "set key outside right top\n"
     << "set xlabel 't (s)'\n"
-    << "set multiplot layout " << rows << ",1 title " << gp_quote(r.title) << "\n";
+    << "set multiplot layout " << rows << ",1 title " << gp_lines(r.title) << "\n";
   for (const PlotPanel& p : r.panels) {
     s << "set ylabel " << gp_quote(p.ylabel) << "\n";
     s << "plot ";

@@ -31,7 +31,7 @@ struct PlotPanel {
 struct PlotRequest {
   std::filesystem::path csv;
   std::filesystem::path png;
-  std::string title;
+  std::string title;  // '\n' starts a new line
   int time_column{1};
   std::vector<PlotPanel> panels;  // stacked top to bottom
 };

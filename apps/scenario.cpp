@@ -447,6 +447,16 @@ std::vector<GuidanceEvent> parse_guidance(const Reader& r, const RunSpec& run, c
   return out;
 }
 
+void record_values(const json& j, const std::string& path, std::map<std::string, std::string>& out) {
+  if (j.is_object()) {
+    for (const auto& item : j.items()) record_values(item.value(), join(path, item.key()), out);
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) record_values(j[i], at_index(path, i), out);
+  } else {
+    out[path] = j.dump();
+  }
+}
+
 }  // namespace
 
 ScenarioError::ScenarioError(std::string file, std::string field, std::string reason)
@@ -516,6 +526,7 @@ Scenario parse_scenario(std::string_view json_text, const std::string& file) {
                   s.run, s.component);
   s.body = parse_body(top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel"}));
   s.guidance = parse_guidance(top.object("guidance", {"schedule"}), s.run, s.file);
+  record_values(doc, "", s.values);
   return s;
 }
 

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -70,6 +71,9 @@ struct Scenario {
   std::size_t fault_count{0};
   BodyProfile body{};
   std::vector<GuidanceEvent> guidance;      // sorted by time
+  // Every number, string and boolean of the file as written, by JSON path (for messages
+  // about a value the component or the stub refused).
+  std::map<std::string, std::string> values;
 };
 
 // Parses and checks the schema and the values the component and stub do not check

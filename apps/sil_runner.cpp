@@ -128,13 +128,14 @@ GyroComponentConfig<T> cast_config(const GyroComponentConfig<double>& d) {
   return g;
 }
 
-std::string refusal(const char* who, Status st, Precision p) {
+std::string refusal(const Scenario& s, const std::string& path, const char* who, Status st) {
   std::string r = to_string(st);
-  r += " (refused by ";
+  const auto v = s.values.find(path);
+  if (v != s.values.end()) r += " (value " + v->second + ")";
+  r += "; refused by ";
   r += who;
   r += "::configure";
-  if (p == Precision::kFloat) r += " in float";
-  r += ")";
+  if (s.run.precision == Precision::kFloat) r += " in float";
   return r;
 }
 
@@ -143,13 +144,13 @@ template <typename T>
 void configure_both(const Scenario& s, SimulatedGyro<T>& stub, GyroComponent<T>& comp) {
   const ConfigCheck g = stub.configure(cast_config<T>(s.gyro));
   if (!g.ok()) {
-    throw ScenarioError(s.file, gyro_field_path(s, g.field ? g.field : "(unnamed)"),
-                        refusal("SimulatedGyro", g.status, s.run.precision));
+    const std::string path = gyro_field_path(s, g.field ? g.field : "(unnamed)");
+    throw ScenarioError(s.file, path, refusal(s, path, "SimulatedGyro", g.status));
   }
   const ConfigCheck c = comp.configure(cast_config<T>(s.component));
   if (!c.ok()) {
-    throw ScenarioError(s.file, component_field_path(s, c.field ? c.field : "(unnamed)"),
-                        refusal("GyroComponent", c.status, s.run.precision));
+    const std::string path = component_field_path(s, c.field ? c.field : "(unnamed)");
+    throw ScenarioError(s.file, path, refusal(s, path, "GyroComponent", c.status));
   }
 }
 

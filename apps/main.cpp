@@ -6,6 +6,8 @@
 // Exit status: 0 done; 1 the run failed (software refused a call, output not writable);
 // 2 bad command line or bad scenario (the message names file, field and reason);
 // 3 the CSV was written but the plot failed (gnuplot missing or failing).
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>

@@ -159,10 +159,15 @@ class GyroModel {
     }
 
     const Vector2<T> gimbal(gimbal_.pitch_rad, gimbal_.yaw_rad);
-    const Vector2<T> drift =
-        error_drift(config_.errors, gimbal, rate_rad_s_, in.body_accel, config_.gravity);
-    const Vector2<T> torque = cross_coupled_torque(config_.errors, torque_cmd) +
-                              torque_for_rate_frictionless(prm.angular_momentum, drift);
+    const Vector2<T> drift = error_drift(config_.errors, gimbal, in.body_accel, config_.gravity);
+    Vector2<T> torque = cross_coupled_torque(config_.errors, torque_cmd) +
+                        torque_for_rate_frictionless(prm.angular_momentum, drift);
+    // Coulomb friction against the steady precession of all the other torques (none when
+    // f = H = 0: then there is no precession, and a drift would be no torque anyway).
+    Vector2<T> precession = Vector2<T>::Zero();
+    if (steady_precession_rate(prm, torque, precession) == Status::kOk) {
+      torque += torque_for_rate_frictionless(prm.angular_momentum, coulomb_drift(config_.errors, precession));
+    }
 
     RotorState<T> s;  // the ISAF starts at the gyro's attitude: angles zero (listing kept them)
     s.rate_rad_s = rate_rad_s_;

@@ -1,7 +1,10 @@
 // Validation of the component's configuration: refuses with the first bad field's name.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 
 #include "gyro/component_types.hpp"
 #include "gyro/gyro_model.hpp"
@@ -57,9 +60,9 @@ template <typename T>
       {c.spin_low_persistence_ticks, "spin_low_persistence_ticks"},
       {c.torquer_fail_persistence_ticks, "torquer_fail_persistence_ticks"},
   };
-  for (const Count& n : counts) {
-    if (n.value == 0u) return {Status::kOutOfRange, n.name};
-  }
+  const Count* const zero = std::find_if(std::begin(counts), std::end(counts),
+                                         [](const Count& n) noexcept { return n.value == 0u; });
+  if (zero != std::end(counts)) return {Status::kOutOfRange, zero->name};
   // The rotor itself (and that the nominal rotor has a finite transition over a tick).
   const RotorParameters<T> rotor{c.pitch_inertia, c.yaw_inertia, c.friction,
                                  angular_momentum(c.nominal_spin_hz, c.spin_inertia)};

@@ -181,7 +181,7 @@ class GyroComponent {
   // Persistence counters; true when a fault condition has lasted long enough.
   [[nodiscard]] bool update_fault_counters(bool accepted, std::uint32_t& flags) noexcept {
     bad_reading_run_ = accepted ? 0u : sat_inc(bad_reading_run_);
-    spin_low_run_ = (flags & kSpinLow) ? sat_inc(spin_low_run_) : 0u;
+    spin_low_run_ = ((flags & kSpinLow) != 0u) ? sat_inc(spin_low_run_) : 0u;
     if (residual_run_ >= config_.residual_persistence_ticks) flags |= kResidualFault;
     return bad_reading_run_ >= config_.invalid_persistence_ticks ||
            residual_run_ >= config_.residual_persistence_ticks ||
@@ -273,7 +273,7 @@ class GyroComponent {
 
   void count(std::uint32_t flags) noexcept {
     for (int i = 0; i < kComponentFlagCount; ++i) {
-      if (flags & (1u << static_cast<unsigned>(i))) {
+      if ((flags & (1u << static_cast<unsigned>(i))) != 0u) {
         std::uint32_t& c = telemetry_.counters[static_cast<std::size_t>(i)];
         c = sat_inc(c);
       }

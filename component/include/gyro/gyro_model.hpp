@@ -183,16 +183,16 @@ class GyroModel {
     const GimbalAngles<T> g = gimbal_angles(in.R_earth_to_body, spin_axis_in_earth(q));
     if (!all_finite(g.pitch_rad, g.yaw_rad)) return Status::kNumericalOverflow;
 
-    std::uint32_t flags = gimbal_flag(g);
+    std::uint32_t step_flags = gimbal_flag(g);
     const T lim = config_.small_angle_limit_rad;
-    if (amplitude.maxCoeff() > lim || s.angle_rad.cwiseAbs().maxCoeff() > lim) flags |= kFlagSmallAngle;
+    if (amplitude.maxCoeff() > lim || s.angle_rad.cwiseAbs().maxCoeff() > lim) step_flags |= kFlagSmallAngle;
 
     q_gyro_to_earth_ = q;
     rate_rad_s_ = s.rate_rad_s;
     isaf_angle_rad_ = s.angle_rad;
     nutation_amplitude_rad_ = amplitude;
     gimbal_ = g;
-    flags_ = flags;
+    flags_ = step_flags;
     applied_torque_ = torque;
     return Status::kOk;
   }

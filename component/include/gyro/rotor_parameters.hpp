@@ -43,8 +43,10 @@ template <typename T>
 }
 template <typename T, int R, int C>
 [[nodiscard]] bool all_finite(const Eigen::Matrix<T, R, C>& m) noexcept {
-  for (int i = 0; i < m.size(); ++i) {
-    if (!std::isfinite(m.data()[i])) return false;
+  for (Eigen::Index c = 0; c < m.cols(); ++c) {
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+      if (!std::isfinite(m(r, c))) return false;
+    }
   }
   return true;
 }

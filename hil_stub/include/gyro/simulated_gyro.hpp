@@ -356,11 +356,11 @@ class SimulatedGyro final : public GyroPort<T> {
     if (config_.spin_down_time_constant_s > T(0)) exponent += ticks * dt / config_.spin_down_time_constant_s;
     for (const FaultEvent<T>& f : config_.faults) {
       if (f.kind != FaultKind::kSpinMotorFailure) continue;
-      const T start = static_cast<T>(f.start_tick);
-      if (ticks <= start) continue;
-      T end = ticks;
-      if (f.duration_ticks != 0u) end = std::min(ticks, static_cast<T>(f.start_tick + f.duration_ticks));
-      exponent += (end - start) * dt / f.magnitude;
+      const T fault_start = static_cast<T>(f.start_tick);
+      if (ticks <= fault_start) continue;
+      T fault_end = ticks;
+      if (f.duration_ticks != 0u) fault_end = std::min(ticks, static_cast<T>(f.start_tick + f.duration_ticks));
+      exponent += (fault_end - fault_start) * dt / f.magnitude;
     }
     const T spin = config_.spin_hz * std::exp(-exponent);
     // Run down below the rounding of the initial spin: stopped. (A vanishing but non-zero H
@@ -419,11 +419,11 @@ class SimulatedGyro final : public GyroPort<T> {
   // One conversion of the pickoff electronics at tick_.
   void sample(bool power_up) noexcept {
     const PickoffModel<T>& pm = config_.pickoff;
-    const Vector2<T> truth = truth_gimbal();
+    const Vector2<T> truth_rad = truth_gimbal();
     if (power_up || !(pm.lag_s > T(0))) {
-      lag_out_ = truth;  // no lag: exactly the truth (x + (y - x) need not round to y)
+      lag_out_ = truth_rad;  // no lag: exactly the truth (x + (y - x) need not round to y)
     } else {
-      lag_out_ += lag_gain_ * (truth - lag_out_);
+      lag_out_ += lag_gain_ * (truth_rad - lag_out_);
     }
 
     Vector2<T> bias = pm.bias_rad;

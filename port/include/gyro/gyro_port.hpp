@@ -58,7 +58,9 @@ class GyroPort {
  protected:
   GyroPort() = default;
   GyroPort(const GyroPort&) = default;
+  GyroPort(GyroPort&&) noexcept = default;
   GyroPort& operator=(const GyroPort&) = default;
+  GyroPort& operator=(GyroPort&&) noexcept = default;
   ~GyroPort() = default;  // not deleted through the interface: no heap, no ownership
 };
 

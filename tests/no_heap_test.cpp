@@ -1,0 +1,202 @@
+// The rotor dynamics never touch the heap, in float and double: every call runs inside
+// gyro::test::measure_heap (tests/support/heap_guard.hpp), which counts operator new/delete
+// and malloc/free, and bans Eigen's dynamic allocation (EIGEN_RUNTIME_NO_MALLOC). The canaries
+// first show that each check fires.
+//
+// To prove more code heap-free, add a test with the same pattern:
+//   const HeapUse use = measure_heap([&] { st = code_under_test(...); });
+//   expect_no_heap(use, "what");
+#define EIGEN_RUNTIME_NO_MALLOC          // before any Eigen header
+#define GYRO_HEAP_GUARD_IMPLEMENTATION   // this executable's operator new replacement
+#include "support/heap_guard.hpp"
+
+#if defined(NDEBUG)
+#error "no_heap_test needs assertions: Eigen's EIGEN_RUNTIME_NO_MALLOC check is an eigen_assert"
+#endif
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "gyro/nutation.hpp"
+#include "gyro/rotor_transition.hpp"
+
+namespace gyro {
+namespace {
+
+using test::HeapCounter;
+using test::HeapUse;
+using test::measure_heap;
+
+// Keeps the optimiser from removing an allocation whose result is otherwise unused.
+void escape(const void* p) { __asm__ __volatile__("" : : "g"(p) : "memory"); }
+// A size the compiler cannot see.
+int opaque(int n) {
+  volatile int v = n;
+  return v;
+}
+
+void expect_no_heap(const HeapUse& use, const char* what) {
+  EXPECT_EQ(use.allocations, 0U) << what << " allocated";
+  EXPECT_EQ(use.releases, 0U) << what << " released heap memory";
+}
+
+// ----------------------------------------------------------------------------------------------
+// Canaries: each check catches what it is meant to.
+
+TEST(HeapGuardCanary, GivenOperatorNewAndAVectorWhenCountedThenBothSeen) {
+  const HeapCounter counter;
+  {
+    std::unique_ptr<int> p = std::make_unique<int>(3);
+    escape(p.get());
+    std::vector<double> v(static_cast<std::size_t>(opaque(100)), 1.0);
+    escape(v.data());
+  }
+  const HeapUse use = counter.used();
+  EXPECT_GE(use.allocations, 2U);
+  EXPECT_GE(use.releases, 2U);
+}
+
+TEST(HeapGuardCanary, GivenADynamicEigenMatrixWhenCountedThenItsMallocSeen) {
+  // Eigen allocates with std::malloc, which the counter sees through the linker's --wrap.
+  const HeapCounter counter;
+  {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Constant(opaque(8), opaque(8), 1.0);
+    escape(m.data());
+  }
+  const HeapUse use = counter.used();
+  EXPECT_GE(use.allocations, 1U);
+  EXPECT_GE(use.releases, 1U);
+}
+
+TEST(HeapGuardCanary, GivenFixedSizeEigenWhenCountedThenNothingSeen) {
+  // The counter does not see the test framework or anything else outside the region.
+  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+  const HeapUse use = measure_heap([&] {
+    m = Eigen::Matrix4d::Identity() * opaque(2);
+    m = m * m;
+    escape(m.data());
+  });
+  expect_no_heap(use, "fixed-size Eigen");
+  EXPECT_EQ(m(0, 0), 4.0);
+}
+
+TEST(HeapGuardCanaryDeathTest, GivenEigenMallocBannedWhenDynamicMatrixThenEigenAborts) {
+  EXPECT_DEATH(
+      {
+        Eigen::internal::set_is_malloc_allowed(false);
+        Eigen::MatrixXd m(opaque(8), opaque(8));
+        escape(m.data());
+      },
+      "heap allocation is forbidden");
+  // measure_heap bans it the same way.
+  EXPECT_DEATH(
+      {
+        const HeapUse use = measure_heap([] {
+          Eigen::VectorXf v(opaque(16));
+          escape(v.data());
+        });
+        escape(&use);
+      },
+      "heap allocation is forbidden");
+}
+
+// ----------------------------------------------------------------------------------------------
+// The rotor dynamics.
+
+template <typename T>
+class NoHeap : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(NoHeap, Scalars);
+
+// One rotor per branch of the transition: series, closed form (under- and near-critically
+// damped), separated real eigenvalues (overdamped), H = 0, f = 0, and f = H = 0.
+template <typename T>
+std::vector<RotorParameters<T>> rotors_in_every_regime() {
+  return {
+      {T(2.25), T(2), T(5), angular_momentum(T(100), T(3))},  // the report's gyro
+      {T(2), T(2), T(3), T(0)},                               // critical (beta^2 = 0 exactly)
+      {T(1), T(4), T(4) / T(3), T(1)},                        // near critical, J1 != J2
+      {T(1), T(50), T(400), T(3)},                            // overdamped, stiff
+      {T(0.5), T(5), T(2), T(0)},                             // no spin
+      {T(1), T(2), T(0), T(10)},                              // no friction
+      {T(1), T(3), T(0), T(0)},                               // free
+  };
+}
+
+TYPED_TEST(NoHeap, GivenEveryRegimeAndStepWhenTransitionAdvanceAndPropagateThenNoHeap) {
+  using T = TypeParam;
+  const Vector2<T> torque(T(0.7), T(-1.3));
+  for (const RotorParameters<T>& p : rotors_in_every_regime<T>()) {
+    for (const T dt : {T(1e-6), T(1e-3), T(0.1), T(10)}) {
+      RotorTransition<T> tr;
+      RotorState<T> a, b;
+      a.rate_rad_s = Vector2<T>(T(0.5), T(0.3));
+      b = a;
+      Status st_make = Status::kNotConfigured, st_adv = Status::kNotConfigured, st_prop = Status::kNotConfigured;
+      const HeapUse use = measure_heap([&] {
+        st_make = make_transition(p, dt, tr);
+        st_adv = advance(tr, torque, a);
+        st_prop = propagate(p, dt, torque, b);
+      });
+      expect_no_heap(use, "make_transition/advance/propagate");
+      EXPECT_EQ(st_make, Status::kOk);
+      EXPECT_EQ(st_adv, Status::kOk);
+      EXPECT_EQ(st_prop, Status::kOk);
+      EXPECT_EQ(a.angle_rad, b.angle_rad);
+    }
+  }
+}
+
+TYPED_TEST(NoHeap, GivenEveryRegimeWhenModesAmplitudeAndPrecessionThenNoHeap) {
+  using T = TypeParam;
+  const Vector2<T> torque(T(0.7), T(-1.3));
+  for (const RotorParameters<T>& p : rotors_in_every_regime<T>()) {
+    RotorModes<T> modes;
+    Vector2<T> amp = Vector2<T>::Zero(), w_ss = Vector2<T>::Zero(), back = Vector2<T>::Zero();
+    Status st_modes = Status::kNotConfigured, st_amp = Status::kNotConfigured;
+    const HeapUse use = measure_heap([&] {
+      st_modes = compute_modes(p, modes);
+      st_amp = nutation_amplitude(p, Vector2<T>(T(0.5), T(0.3)), torque, amp);
+      if (steady_precession_rate(p, torque, w_ss) == Status::kOk) {
+        (void)torque_for_precession_rate(p, w_ss, back);
+      }
+    });
+    expect_no_heap(use, "compute_modes/nutation_amplitude/steady_precession_rate/torque_for_precession_rate");
+    EXPECT_EQ(st_modes, Status::kOk);
+    EXPECT_EQ(st_amp, Status::kOk);
+    EXPECT_TRUE(all_finite(amp));
+  }
+}
+
+TYPED_TEST(NoHeap, GivenBadInputWhenRejectedThenNoHeap) {
+  using T = TypeParam;
+  const RotorParameters<T> bad{T(-1), T(2), T(5), T(10)};
+  const RotorParameters<T> good{T(2.25), T(2), T(5), T(1884)};
+  const Vector2<T> nan_torque(std::numeric_limits<T>::quiet_NaN(), T(0));
+  RotorTransition<T> tr;
+  RotorState<T> s;
+  RotorModes<T> modes;
+  Vector2<T> out = Vector2<T>::Zero();
+  Status st[6] = {};
+  const HeapUse use = measure_heap([&] {
+    st[0] = make_transition(bad, T(0.01), tr);
+    st[1] = make_transition(good, T(-1), tr);
+    st[2] = propagate(good, T(0.01), nan_torque, s);
+    st[3] = compute_modes(bad, modes);
+    st[4] = nutation_amplitude(good, Vector2<T>(T(0), T(0)), nan_torque, out);
+    st[5] = steady_precession_rate(RotorParameters<T>{T(1), T(1), T(0), T(0)}, Vector2<T>(T(1), T(0)), out);
+  });
+  expect_no_heap(use, "rejections");
+  EXPECT_EQ(st[0], Status::kNonPositiveInertia);
+  EXPECT_EQ(st[1], Status::kNonPositiveStep);
+  EXPECT_EQ(st[2], Status::kNonFiniteInput);
+  EXPECT_EQ(st[3], Status::kNonPositiveInertia);
+  EXPECT_EQ(st[4], Status::kNonFiniteInput);
+  EXPECT_EQ(st[5], Status::kNoSteadyState);
+}
+
+}  // namespace
+}  // namespace gyro

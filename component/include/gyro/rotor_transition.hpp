@@ -101,8 +101,8 @@ void phi_real(T x, T& e, T& phi1, T& phi2) noexcept {
     constexpr int kTerms = ScalarTraits<T>::kSeriesTerms;
     T s1 = T(0), s2 = T(0);
     for (int k = kTerms; k >= 0; --k) {  // Horner
-      s1 = s1 * x + inv_fact[static_cast<std::size_t>(k + 1)];
-      s2 = s2 * x + inv_fact[static_cast<std::size_t>(k + 2)];
+      s1 = s1 * x + inv_fact[static_cast<std::size_t>(k) + 1u];
+      s2 = s2 * x + inv_fact[static_cast<std::size_t>(k) + 2u];
     }
     phi1 = s1;
     phi2 = s2;

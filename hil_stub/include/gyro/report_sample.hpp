@@ -52,7 +52,7 @@ struct SampleRunSummary {
 // Runs `steps` steps of length `dt` and calls on_step(k, t, model, R_earth_to_body) after
 // each. Stops, as the report's driver does, on a gimbal-limit or small-angle flag.
 template <typename T, typename OnStep>
-SampleRunSummary run_report_sample(T dt, int steps, OnStep&& on_step) noexcept {
+[[nodiscard]] SampleRunSummary run_report_sample(T dt, int steps, OnStep&& on_step) noexcept {
   using S = ReportSample<T>;
   SampleRunSummary sum;
   GyroModel<T> g;

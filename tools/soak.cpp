@@ -8,6 +8,7 @@
 #include <cinttypes>
 #include <cstdio>
 #include <fstream>
+#include <malloc.h>
 #include <string>
 
 #include "body_motion.hpp"
@@ -29,6 +30,9 @@ long resident_kib() {
   }
   return value;
 }
+
+// Bytes the heap has handed out and not taken back.
+std::size_t heap_in_use() { return mallinfo2().uordblks; }
 
 }  // namespace
 
@@ -56,6 +60,7 @@ int main(int argc, char** argv) {
   in.nav_valid = true;
   const long rss_start = resident_kib();
   long rss_after_warmup = -1;
+  std::size_t heap_after_warmup = 0;
   double worst_residual = 0, worst_ortho_est = 0, worst_ortho_truth = 0;
   std::uint64_t faults = 0;
   float t_accumulated = 0.0f;  // what a float clock summing ticks would read
@@ -82,7 +87,10 @@ int main(int argc, char** argv) {
     if (comp.mode() == gyro::GyroMode::kFree) {
       worst_residual = std::max(worst_residual, tm.residual_rad.cwiseAbs().maxCoeff());
     }
-    if (k == 1'000'000) rss_after_warmup = resident_kib();
+    if (k == std::min<std::uint64_t>(1'000'000, ticks)) {
+      rss_after_warmup = resident_kib();
+      heap_after_warmup = heap_in_use();
+    }
     if (k % report_every == 0 || k == ticks) {
       const Eigen::Matrix3d r_est = tm.attitude_gyro_to_earth.toRotationMatrix();
       worst_ortho_est = std::max(worst_ortho_est, gyro::orthonormality_error(r_est));
@@ -94,6 +102,7 @@ int main(int argc, char** argv) {
   }
   const auto& tm = comp.telemetry();
   const long rss_end = resident_kib();
+  const std::size_t heap_end = heap_in_use();
   const double t_end = static_cast<double>(tm.tick) * s.run.tick_s;
   std::printf("ticks                   %" PRIu64 " (telemetry tick %" PRIu64 ", t = %.3f s)\n", ticks, tm.tick, t_end);
   std::printf("time at end             exact (integer ticks); a float clock summing the tick reads %.6g s "
@@ -106,8 +115,10 @@ int main(int argc, char** argv) {
               tm.counters[3], tm.counters[4], tm.counters[5], tm.counters[7], tm.counters[2]);
   std::printf("memory (VmRSS)          start %ld KiB, after 1e6 ticks %ld KiB, end %ld KiB\n", rss_start,
               rss_after_warmup, rss_end);
+  std::printf("heap in use             after 1e6 ticks %zu B, end %zu B\n", heap_after_warmup, heap_end);
   const bool ok = faults == 0 && tm.tick == ticks && worst_ortho_est < 1e-12 && worst_ortho_truth < 1e-12 &&
-                  (rss_after_warmup < 0 || rss_end <= rss_after_warmup + 64);
+                  heap_end == heap_after_warmup && rss_end <= rss_after_warmup + 1024;
+  // (RSS moves by a few pages as stdio and libm pages are touched; the heap must not move.)
   std::printf("%s\n", ok ? "soak passed" : "soak FAILED");
   return ok ? 0 : 1;
 }

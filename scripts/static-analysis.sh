@@ -36,7 +36,35 @@ for h in component/include/gyro/*.hpp port/include/gyro/*.hpp hil_stub/include/g
   fi
 done
 
-# 2. compile_commands.json of a host configure (nothing is built).
+# 2. Constructs the flight rules ban from the three libraries (docs/coding-rules.md), looked
+# for in the code with // comments removed. The compiler flags and the tests enforce most of
+# these too; this names the rule and the line.
+echo "== banned constructs in component/, port/, hil_stub/"
+lib_headers=(component/include/gyro/*.hpp port/include/gyro/*.hpp hil_stub/include/gyro/*.hpp)
+ban() {  # ban <rule> <extended regex> [<regex of allowed matches>]
+  local rule="$1" re="$2" allow="${3:-}" h hits
+  for h in "${lib_headers[@]}"; do
+    hits="$(sed 's://.*$::' "$h" | grep -nE "$re" || true)"
+    if [ -n "$allow" ] && [ -n "$hits" ]; then hits="$(grep -vE "$allow" <<< "$hits" || true)"; fi
+    if [ -n "$hits" ]; then
+      sed "s|^|$h:|; s|\$| [$rule]|" <<< "$hits"
+      failed=1
+    fi
+  done
+}
+ban no-heap '\bnew\b|\bdelete\b|\b(malloc|calloc|realloc|free|aligned_alloc)[[:space:]]*\(' \
+  '=[[:space:]]*delete\b'
+ban no-heap 'std::(vector|string|basic_string|list|deque|map|set|multimap|multiset|unordered_[a-z]+|function|unique_ptr|shared_ptr|make_unique|make_shared|allocator)\b'
+ban no-heap '#include[[:space:]]*<(vector|string|list|deque|map|set|unordered_map|unordered_set|memory|functional|iostream|sstream|fstream|regex)>'
+ban no-exceptions-no-rtti '\b(throw|try|catch|typeid|dynamic_cast)\b'
+ban no-clock-reads '#include[[:space:]]*<(chrono|ctime|time\.h|sys/time\.h|random|thread|mutex)>'
+ban no-clock-reads 'std::chrono|\b(clock_gettime|gettimeofday|random_device|rand|srand)\b|\b(time|clock)[[:space:]]*\('
+ban fixed-size-eigen-only '\bDynamic\b|\b(Matrix|Vector|RowVector|Array)X'
+ban bounded-loops '\b(while|goto)\b|\bdo[[:space:]]*\{'
+# Every function returning a status is [[nodiscard]] (declared on the line of its return type).
+ban nodiscard-status '^[[:space:]]*((static|virtual|inline|constexpr|friend)[[:space:]]+)*(Status|PortStatus|ConfigCheck|SampleRunSummary)[[:space:]]+[A-Za-z_][A-Za-z0-9_]*[[:space:]]*\('
+
+# 3. compile_commands.json of a host configure (nothing is built).
 echo "== configure $build_dir (compile_commands.json)"
 mkdir -p "$build_dir"
 cmake -S . -B "$build_dir" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DGYRO_BUILD_TOOLS=OFF \
@@ -45,7 +73,7 @@ cmake -S . -B "$build_dir" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DGYRO_BUILD_TOOLS
   exit 2
 }
 
-# 3. clang-tidy: the checks, header filter and warnings-as-errors come from .clang-tidy.
+# 4. clang-tidy: the checks, header filter and warnings-as-errors come from .clang-tidy.
 echo "== $("$clang_tidy" --version | grep -m1 -o 'LLVM version [0-9.]*' | sed 's/LLVM/clang-tidy (LLVM)/')"
 tidy_log="$build_dir/clang-tidy.log"
 tidy_rc=0
@@ -58,7 +86,7 @@ else
   echo "clang-tidy: clean"
 fi
 
-# 4. cppcheck on the same translation unit, our include directories only.
+# 5. cppcheck on the same translation unit, our include directories only.
 echo "== $("$cppcheck" --version)"
 cppcheck_log="$build_dir/cppcheck.log"
 cppcheck_rc=0

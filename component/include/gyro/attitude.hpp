@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "gyro/rotor_parameters.hpp"
@@ -72,20 +73,22 @@ template <typename T>
   Vector3<T> gp;
   gp.noalias() = R_earth_to_body * spin_axis_earth;
   GimbalAngles<T> g;
-  g.pitch_rad = std::atan2(-gp(2), std::hypot(gp(0), gp(1)));
+  g.pitch_rad = std::atan2(-gp(2), std::sqrt(gp(0) * gp(0) + gp(1) * gp(1)));  // |gp| = 1
   g.yaw_rad = std::atan2(gp(1), gp(0));
   g.cosine_of_cone = gp(0);
   return g;
 }
 
-// True when R is finite and orthonormal within the scalar type's tolerance.
+// True when R is finite and orthonormal within the scalar type's tolerance, with determinant
+// +1. R R^T is symmetric: six row dot products; the sign of row0 x row1 . row2 is det R.
 template <typename T>
 [[nodiscard]] bool is_rotation(const Matrix3<T>& r) noexcept {
   if (!all_finite(r)) return false;
-  Matrix3<T> e;
-  e.noalias() = r * r.transpose();
-  e -= Matrix3<T>::Identity();
-  return e.cwiseAbs().maxCoeff() <= ScalarTraits<T>::kRotationTolerance && r.determinant() > T(0);
+  const Vector3<T> r0 = r.row(0).transpose(), r1 = r.row(1).transpose(), r2 = r.row(2).transpose();
+  const T tol = ScalarTraits<T>::kRotationTolerance;
+  const T worst = std::max({std::abs(r0.dot(r0) - T(1)), std::abs(r1.dot(r1) - T(1)), std::abs(r2.dot(r2) - T(1)),
+                            std::abs(r0.dot(r1)), std::abs(r0.dot(r2)), std::abs(r1.dot(r2))});
+  return worst <= tol && r0.cross(r1).dot(r2) > T(0);
 }
 
 // Largest entry of R R^T - I: how far a matrix has drifted from a rotation.

@@ -153,7 +153,11 @@ class GyroModel {
       RotorTransition<T> tr;
       const Status st = make_transition(prm, in.dt_s, tr);
       if (st != Status::kOk) return st;
+      NutationMap<T> map;
+      const Status ms = make_nutation_map(prm, map);
+      if (ms != Status::kOk) return ms;
       transition_ = tr;
+      nutation_map_ = map;
       cached_h_ = prm.angular_momentum;
       cache_valid_ = true;
     }
@@ -164,8 +168,9 @@ class GyroModel {
                         torque_for_rate_frictionless(prm.angular_momentum, drift);
     // Coulomb friction against the steady precession of all the other torques (none when
     // f = H = 0: then there is no precession, and a drift would be no torque anyway).
-    Vector2<T> precession = Vector2<T>::Zero();
-    if (steady_precession_rate(prm, torque, precession) == Status::kOk) {
+    if (nutation_map_.has_steady) {
+      Vector2<T> precession;
+      precession.noalias() = nutation_map_.steady_from_torque * torque;
       torque += torque_for_rate_frictionless(prm.angular_momentum, coulomb_drift(config_.errors, precession));
     }
 
@@ -174,9 +179,7 @@ class GyroModel {
     const Status adv = advance(transition_, torque, s);
     if (adv != Status::kOk) return adv;
 
-    Vector2<T> amplitude = Vector2<T>::Zero();
-    const Status amp = nutation_amplitude(prm, rate_rad_s_, torque, amplitude);
-    if (amp != Status::kOk) return amp;
+    const Vector2<T> amplitude = nutation_amplitude(nutation_map_, rate_rad_s_, torque);
 
     Quaternion<T> q = q_gyro_to_earth_ * step_rotation(s.angle_rad);
     renormalize(q);
@@ -255,6 +258,7 @@ class GyroModel {
   GimbalAngles<T> gimbal_{};
   std::uint32_t flags_{0};
   RotorTransition<T> transition_{};  // cached while H and dt stay the same
+  NutationMap<T> nutation_map_{};    // cached with it (depends on H only)
   T cached_h_{};
   bool cache_valid_{false};
 };

@@ -23,6 +23,97 @@ namespace gyro {
 // into overdamping. (Capping 1/beta inside the hypot instead is not a bound: near critical
 // the transient exceeded it by up to 7.6%.) Without spin and friction (f = H = 0) there is
 // no transient to nutate: the amplitude is 0.
+// What the amplitude needs from the parameters, computed once per rotor (per H): per step it
+// is then two 2x2 products and a few scalar operations.
+template <typename T>
+struct NutationMap {
+  Matrix2<T> steady_from_torque{Matrix2<T>::Zero()};  // w_ss = P T (eq 11: k5, k6)
+  Matrix2<T> transient_from_rate{Matrix2<T>::Zero()};  // y = A^-1 u, u = w - w_ss
+  Matrix2<T> rotated_from_rate{Matrix2<T>::Zero()};    // N y
+  T inv_beta{};        // 1/beta when underdamped, else 0
+  T envelope{};        // S, the bound of |exp(-alpha t) sin(beta t)/beta| (or sinh)
+  bool has_steady{false};     // f^2 + H^2 > 0
+  bool has_transient{false};  // omega0^2 > 0
+  bool saturated{false};      // the transient is too large to represent
+};
+
+template <typename T>
+[[nodiscard]] Status make_nutation_map(const RotorParameters<T>& prm, NutationMap<T>& out) noexcept {
+  const Status st = validate(prm);
+  if (st != Status::kOk) return st;
+  NutationMap<T> map;
+  const T f = prm.friction, h = prm.angular_momentum;
+  const T den = f * f + h * h;
+  const detail::RateMatrixTerms<T> m = detail::rate_matrix_terms(prm);
+  if (den > T(0) && m.omega0_sq > T(0)) {
+    map.has_steady = true;
+    map.has_transient = true;
+    map.steady_from_torque << f / den, -h / den, h / den, f / den;
+    Matrix2<T> n;
+    n << m.d, -m.p, m.q, -m.d;
+    // A^-1 = -(N + alpha I) / omega0^2, since (N - alpha I)(N + alpha I) = -omega0^2 I.
+    Matrix2<T> a_inv = n;
+    a_inv.diagonal().array() += m.alpha;
+    a_inv /= -m.omega0_sq;
+    map.transient_from_rate = a_inv;
+    map.rotated_from_rate.noalias() = n * a_inv;
+    constexpr T kE = T(2.71828182845904523536L);
+    if (m.beta_sq > T(0)) {
+      const T beta = std::sqrt(m.beta_sq);
+      map.inv_beta = T(1) / beta;
+      map.envelope = T(1) / std::max(beta, kE * m.alpha);
+    } else {
+      const T gamma = std::sqrt(-m.beta_sq);
+      map.envelope = (m.alpha + gamma) / (kE * m.omega0_sq);  // 1/(e (alpha - gamma))
+    }
+  } else if (den > T(0)) {
+    map.has_steady = true;  // omega0^2 underflowed to 0: no transient, as for f = H = 0
+    map.steady_from_torque << f / den, -h / den, h / den, f / den;
+  }
+  if (!all_finite(map.steady_from_torque, map.transient_from_rate, map.rotated_from_rate, map.envelope)) {
+    // A rotor with almost no spin and no friction: the transient is too large to represent.
+    map.has_transient = false;
+    map.transient_from_rate.setZero();
+    map.rotated_from_rate.setZero();
+    map.envelope = std::numeric_limits<T>::max();
+    map.saturated = true;
+  }
+  out = map;
+  return Status::kOk;
+}
+
+// Per-axis amplitude (rad) of the nutation that `rate_rad_s` excites under a constant
+// `torque`, from a map made for the rotor. Inputs are assumed finite (callers check them);
+// an amplitude too large for T is reported as the largest finite T.
+template <typename T>
+[[nodiscard]] Vector2<T> nutation_amplitude(const NutationMap<T>& map, const Vector2<T>& rate_rad_s,
+                                            const Vector2<T>& torque) noexcept {
+  if (!map.has_transient) {
+    // f = H = 0: no transient to nutate; or one too large to represent.
+    return map.saturated ? Vector2<T>::Constant(std::numeric_limits<T>::max()) : Vector2<T>::Zero();
+  }
+  Vector2<T> u = rate_rad_s;
+  u.noalias() -= map.steady_from_torque * torque;
+  Vector2<T> y, ny;
+  y.noalias() = map.transient_from_rate * u;
+  ny.noalias() = map.rotated_from_rate * u;
+  Vector2<T> amp;
+  for (int i = 0; i < 2; ++i) {
+    const T by_sum = std::abs(y(i)) + map.envelope * std::abs(ny(i));
+    T a = by_sum;
+    if (map.inv_beta > T(0)) {
+      const T r = ny(i) * map.inv_beta;
+      const T by_rotation = std::sqrt(y(i) * y(i) + r * r);  // may be inf as beta -> 0
+      a = (by_rotation < by_sum) ? by_rotation : by_sum;
+    }
+    amp(i) = all_finite(a) ? a : std::numeric_limits<T>::max();
+  }
+  return amp;
+}
+
+// The same for one call: validates, builds the map and applies it. An amplitude too large for
+// T is refused here (kNumericalOverflow, output untouched); GyroModel, which must finish its
+// step, uses the map form and reads it as the largest finite T (the small-angle flag rises).
 template <typename T>
 [[nodiscard]] Status nutation_amplitude(const RotorParameters<T>& prm, const Vector2<T>& rate_rad_s,
                                         const Vector2<T>& torque,
@@ -30,36 +121,11 @@ template <typename T>
   const Status st = validate(prm);
   if (st != Status::kOk) return st;
   if (!all_finite(rate_rad_s, torque)) return Status::kNonFiniteInput;
-  const detail::RateMatrixTerms<T> m = detail::rate_matrix_terms(prm);
-  if (m.omega0_sq == T(0)) {
-    amplitude_rad_out.setZero();
-    return Status::kOk;
-  }
-  Vector2<T> w_ss;
-  const Status ss = steady_precession_rate(prm, torque, w_ss);
-  if (ss != Status::kOk) return ss;
-  const Vector2<T> u0 = rate_rad_s - w_ss;
-  Matrix2<T> n;
-  n << m.d, -m.p, m.q, -m.d;
-  // A^-1 = -(N + alpha I) / omega0^2, since (N - alpha I)(N + alpha I) = -omega0^2 I.
-  const Vector2<T> y0 = -(n * u0 + m.alpha * u0) / m.omega0_sq;
-  const Vector2<T> ny0 = n * y0;
-  constexpr T kE = T(2.71828182845904523536L);
-  Vector2<T> amp = Vector2<T>::Zero();
-  if (m.beta_sq > T(0)) {
-    const T beta = std::sqrt(m.beta_sq);
-    const T s_max = T(1) / std::max(beta, kE * m.alpha);  // >= |exp(-alpha t) sin(beta t)/beta|
-    for (int i = 0; i < 2; ++i) {
-      const T by_rotation = std::hypot(y0(i), ny0(i) / beta);  // may be inf as beta -> 0
-      const T by_sum = std::abs(y0(i)) + s_max * std::abs(ny0(i));
-      amp(i) = (by_rotation < by_sum) ? by_rotation : by_sum;
-    }
-  } else {
-    const T gamma = std::sqrt(-m.beta_sq);
-    const T s_max = (m.alpha + gamma) / (kE * m.omega0_sq);  // 1/(e (alpha - gamma))
-    for (int i = 0; i < 2; ++i) amp(i) = std::abs(y0(i)) + s_max * std::abs(ny0(i));
-  }
-  if (!all_finite(amp)) return Status::kNumericalOverflow;
+  NutationMap<T> map;
+  const Status ms = make_nutation_map(prm, map);
+  if (ms != Status::kOk) return ms;
+  const Vector2<T> amp = nutation_amplitude(map, rate_rad_s, torque);
+  if (amp.maxCoeff() == std::numeric_limits<T>::max()) return Status::kNumericalOverflow;
   amplitude_rad_out = amp;
   return Status::kOk;
 }

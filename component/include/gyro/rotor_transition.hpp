@@ -216,16 +216,24 @@ template <typename T>
 template <typename T>
 [[nodiscard]] Status advance(const RotorTransition<T>& tr, const Vector2<T>& torque,
                              RotorState<T>& state) noexcept {
-  if (!all_finite(torque, state.angle_rad, state.rate_rad_s)) return Status::kNonFiniteInput;
-  Vector2<T> angle = state.angle_rad;
-  angle.noalias() += tr.angle_from_rate * state.rate_rad_s;
-  angle.noalias() += tr.angle_from_torque * torque;
-  Vector2<T> rate;
-  rate.noalias() = tr.rate_from_rate * state.rate_rad_s;
-  rate.noalias() += tr.rate_from_torque * torque;
-  if (!all_finite(angle, rate)) return Status::kNumericalOverflow;
-  state.angle_rad = angle;
-  state.rate_rad_s = rate;
+  // Written out: the same products Eigen would do, without calls the compiler may not inline.
+  const T w0 = state.rate_rad_s(0), w1 = state.rate_rad_s(1), t0 = torque(0), t1 = torque(1);
+  const Matrix2<T>& ar = tr.angle_from_rate;
+  const Matrix2<T>& at = tr.angle_from_torque;
+  const Matrix2<T>& rr = tr.rate_from_rate;
+  const Matrix2<T>& rt = tr.rate_from_torque;
+  const T a0 = state.angle_rad(0) + ar(0, 0) * w0 + ar(0, 1) * w1 + at(0, 0) * t0 + at(0, 1) * t1;
+  const T a1 = state.angle_rad(1) + ar(1, 0) * w0 + ar(1, 1) * w1 + at(1, 0) * t0 + at(1, 1) * t1;
+  const T r0 = rr(0, 0) * w0 + rr(0, 1) * w1 + rt(0, 0) * t0 + rt(0, 1) * t1;
+  const T r1 = rr(1, 0) * w0 + rr(1, 1) * w1 + rt(1, 0) * t0 + rt(1, 1) * t1;
+  // One test covers inputs and outputs: every input enters every output of its row with a
+  // coefficient, and a non-finite input times any coefficient (0 included) is non-finite.
+  if (!all_finite(a0, a1, r0, r1)) {
+    return all_finite(torque, state.angle_rad, state.rate_rad_s) ? Status::kNumericalOverflow
+                                                                 : Status::kNonFiniteInput;
+  }
+  state.angle_rad = Vector2<T>(a0, a1);
+  state.rate_rad_s = Vector2<T>(r0, r1);
   return Status::kOk;
 }
 

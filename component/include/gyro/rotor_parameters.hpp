@@ -47,7 +47,9 @@ template <typename T>
 template <typename T, int R, int C>
 [[nodiscard]] bool all_finite(const Eigen::Matrix<T, R, C>& m) noexcept {
   T probe = T(0);
-  for (Eigen::Index i = 0; i < m.size(); ++i) probe += m.data()[i] * T(0);
+  for (Eigen::Index c = 0; c < m.cols(); ++c) {
+    for (Eigen::Index r = 0; r < m.rows(); ++r) probe += m(r, c) * T(0);
+  }
   return probe == T(0);
 }
 template <typename A, typename B, typename... Rest>

@@ -1,7 +1,8 @@
 // Behaviour of component/ and port/ that the other suites left unexercised (found by
 // scripts/coverage.sh): the status and mode texts, a cage request while uncaging, the
-// configuration accessor, the nominal spin fallback, failing torquer writes, and a prediction
-// that cannot be represented. Each test asserts what the flight software must do, not only
+// configuration accessor, the nominal spin fallback, failing torquer writes, a prediction that
+// cannot be represented, a nominal rotor that cannot be stepped, the refusals of
+// torque_for_precession_rate, and the nutation map's saturated and underflow cases. Each test asserts what the flight software must do, not only
 // that the line runs.
 #include <gtest/gtest.h>
 
@@ -14,6 +15,7 @@
 
 #include "gyro/component_types.hpp"
 #include "gyro/gyro_port.hpp"
+#include "gyro/nutation.hpp"
 #include "gyro/status.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -278,6 +280,84 @@ TEST(ComponentSpin, GivenNonFiniteOrNegativeSpinReadbackWhenSteppedThenTheNomina
     EXPECT_EQ(rig.tm().spin_hz, nominal) << bad;
     EXPECT_TRUE(telemetry_finite(rig.tm())) << bad;
   }
+}
+
+// A rotor whose transient map cannot be represented in T (J2/J1 of 1e300 with next to no spin
+// and no friction: A^-1 overflows): the map says so, the amplitude is the largest finite T
+// (GyroModel then raises its small-angle flag), and the one-call form refuses it untouched.
+template <typename T>
+void expect_saturated_map(const RotorParameters<T>& prm) {
+  NutationMap<T> map;
+  ASSERT_EQ(make_nutation_map(prm, map), Status::kOk);
+  EXPECT_TRUE(map.saturated);
+  EXPECT_FALSE(map.has_transient);
+  EXPECT_TRUE(map.has_steady);
+  EXPECT_EQ(map.envelope, std::numeric_limits<T>::max());
+  EXPECT_TRUE(all_finite(map.steady_from_torque, map.transient_from_rate, map.rotated_from_rate));
+  const Vector2<T> rate(T(1e-3), T(-2e-3));
+  const Vector2<T> torque(T(0), T(0));
+  const Vector2<T> amp = nutation_amplitude(map, rate, torque);
+  EXPECT_EQ(amp, Vector2<T>::Constant(std::numeric_limits<T>::max()));
+  Vector2<T> out(T(7), T(7));
+  EXPECT_EQ(nutation_amplitude(prm, rate, torque, out), Status::kNumericalOverflow);
+  EXPECT_EQ(out, Vector2<T>(T(7), T(7))) << "a refused call leaves its output as it was";
+}
+
+TEST(NutationMap, GivenATransientTooLargeForDoubleWhenMappedThenSaturatedAndTheAmplitudeIsTheLargestDouble) {
+  expect_saturated_map(RotorParameters<double>{1e-150, 1e150, 0.0, 1e-161});
+}
+
+TEST(NutationMap, GivenATransientTooLargeForFloatWhenMappedThenSaturatedAndTheAmplitudeIsTheLargestFloat) {
+  expect_saturated_map(RotorParameters<float>{1e-20f, 1e20f, 0.0f, 1e-22f});
+}
+
+// Friction with no spin on gimbals so heavy that omega0^2 = f^2/(J1 J2) underflows to 0 while
+// f^2 does not: a steady precession exists (w = T/f), a transient does not (as for f = H = 0).
+TEST(NutationMap, GivenOmega0SquaredUnderflowingWhenMappedThenSteadyPrecessionOnlyAndZeroAmplitude) {
+  const RotorParameters<double> prm{1e200, 1e200, 1e-150, 0.0};
+  NutationMap<double> map;
+  ASSERT_EQ(make_nutation_map(prm, map), Status::kOk);
+  EXPECT_TRUE(map.has_steady);
+  EXPECT_FALSE(map.has_transient);
+  EXPECT_FALSE(map.saturated);
+  EXPECT_EQ(map.steady_from_torque(0, 0), 1e150);  // f / (f^2 + H^2) = 1/f
+  EXPECT_EQ(map.steady_from_torque(1, 0), 0.0);
+  Vector2<double> out(7.0, 7.0);
+  ASSERT_EQ(nutation_amplitude(prm, Vector2<double>(0.5, -0.25), Vector2<double>(1e-160, 0.0), out),
+            Status::kOk);
+  EXPECT_EQ(out, Vector2<double>::Zero());
+}
+
+// The configured nominal rotor must have a finite transition over a tick: a nominal spin so
+// high that H^2 overflows is refused at configure, not discovered in flight.
+TEST(ComponentConfig, GivenANominalRotorWhoseTransitionOverflowsWhenConfiguredThenRefusedAsNumericalOverflow) {
+  Sil<double> sil;
+  GyroComponentConfig<double> c = SeekerGyro<double>::component();
+  c.nominal_spin_hz = 1e200;  // finite and above min_spin_hz: every field check passes
+  const ConfigCheck r = sil.component.configure(c);
+  EXPECT_EQ(r.status, Status::kNumericalOverflow);
+  ASSERT_NE(r.field, nullptr);
+  EXPECT_STREQ(r.field, "tick_s");
+  EXPECT_EQ(sil.component.activate(), Status::kNotConfigured) << "a refused config is not kept";
+}
+
+TEST(SteadyPrecession, GivenBadInputWhenTorqueForPrecessionRateThenEachRefusalHasItsStatusAndOutputUntouched) {
+  const RotorParameters<double> rotor{2.25, 2.0, 5.0, angular_momentum(100.0, 3.0)};
+  const Vector2<double> untouched(7.0, -7.0);
+  Vector2<double> out = untouched;
+  RotorParameters<double> no_inertia = rotor;
+  no_inertia.yaw_inertia = 0.0;
+  EXPECT_EQ(torque_for_precession_rate(no_inertia, Vector2<double>(0.1, 0.2), out), Status::kNonPositiveInertia);
+  EXPECT_EQ(torque_for_precession_rate(rotor, Vector2<double>(0.1, std::nan("")), out), Status::kNonFiniteInput);
+  // H w2 beyond the largest double: not representable, refused rather than returned as inf.
+  EXPECT_EQ(torque_for_precession_rate(rotor, Vector2<double>(0.0, 1e306), out), Status::kNumericalOverflow);
+  EXPECT_EQ(out, untouched);
+  // And the accepted case is the exact inverse of the steady precession.
+  ASSERT_EQ(torque_for_precession_rate(rotor, Vector2<double>(0.1, 0.2), out), Status::kOk);
+  Vector2<double> back;
+  ASSERT_EQ(steady_precession_rate(rotor, out, back), Status::kOk);
+  EXPECT_NEAR(back(0), 0.1, 1e-15);
+  EXPECT_NEAR(back(1), 0.2, 1e-15);
 }
 
 }  // namespace

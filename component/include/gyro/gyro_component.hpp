@@ -140,8 +140,9 @@ class GyroComponent {
   }
 
   [[nodiscard]] T spin_hz(const Reading& r) const noexcept {
+    // A readback whose angular momentum is not representable is no spin: the nominal is used.
     if (config_.use_spin_readback && r.port_ok && r.raw.spin_valid && std::isfinite(r.raw.spin_hz) &&
-        r.raw.spin_hz >= T(0)) {
+        r.raw.spin_hz >= T(0) && std::isfinite(angular_momentum(r.raw.spin_hz, config_.spin_inertia))) {
       return r.raw.spin_hz;
     }
     return config_.nominal_spin_hz;
@@ -263,6 +264,17 @@ class GyroComponent {
     const T h = angular_momentum(spin, config_.spin_inertia);
     const T f = config_.friction_compensation ? config_.friction : T(0);
     Vector2<T> torque(f * rate(0) + h * rate(1), f * rate(1) - h * rate(0));
+    if (!all_finite(torque)) {
+      // The products overflowed (huge rate limits or spin; f, h and the rates are finite and
+      // not all zero here): the same direction from factors scaled to at most 1, whose largest
+      // component is at least 1/sqrt(2), then saturated without overflow.
+      const T k = std::max(f, h);
+      const Vector2<T> u = rate / rate.cwiseAbs().maxCoeff();
+      torque = Vector2<T>((f / k) * u(0) + (h / k) * u(1), (f / k) * u(1) - (h / k) * u(0));
+      torque = (torque / torque.cwiseAbs().maxCoeff()) * config_.max_torque;
+      flags |= kTorquerSaturated;
+      return torque;
+    }
     const T largest = torque.cwiseAbs().maxCoeff();
     if (largest > config_.max_torque) {
       torque *= config_.max_torque / largest;

@@ -1,21 +1,26 @@
 // Behaviour of component/ and port/ that the other suites left unexercised (found by
 // scripts/coverage.sh): the status and mode texts, a cage request while uncaging, the
 // configuration accessor, the nominal spin fallback, failing torquer writes, a prediction that
-// cannot be represented, a nominal rotor that cannot be stepped, the refusals of
-// torque_for_precession_rate, and the nutation map's saturated and underflow cases. Each test asserts what the flight software must do, not only
+// cannot be represented, a nominal rotor that cannot be stepped, an out-of-range pickoff
+// reading, the small-angle flag in telemetry, the refusals of GyroModel::correct_attitude,
+// torque_for_precession_rate and make_nutation_map, an unrepresentable drift torque, and the
+// nutation map's saturated and underflow cases. Each test asserts what the flight software must do, not only
 // that the line runs.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <set>
 #include <string>
 
 #include "gyro/component_types.hpp"
+#include "gyro/gyro_model.hpp"
 #include "gyro/gyro_port.hpp"
 #include "gyro/nutation.hpp"
+#include "gyro/report_sample.hpp"
 #include "gyro/status.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -122,7 +127,7 @@ TEST(ComponentSpin, GivenNoUsableSpinReadbackWhenSteppedThenTheNominalSpinIsUsed
 }
 
 // The SIL gyro behind a faulty harness: readings pass through (the spin readback replaced when
-// `spin_override` is set), torquer writes fail with `write_status` unless it is kOk, and then
+// `spin_override` is set, the angles when `angle_override` is), torquer writes fail with `write_status` unless it is kOk, and then
 // never reach the gyro. A wiring fault between the flight computer and a healthy gyro.
 template <typename T>
 class FaultyHarness final : public GyroPort<T> {
@@ -135,6 +140,7 @@ class FaultyHarness final : public GyroPort<T> {
       out.spin_hz = spin_hz;
       out.spin_valid = true;
     }
+    if (st == PortStatus::kOk && angle_override) out.gimbal_angle_rad = angle_rad;
     return st;
   }
   [[nodiscard]] PortStatus write_torquer(const Vector2<T>& torque) noexcept override {
@@ -145,6 +151,8 @@ class FaultyHarness final : public GyroPort<T> {
   PortStatus write_status{PortStatus::kOk};
   bool spin_override{false};
   T spin_hz{};
+  bool angle_override{false};  // valid bit and sequence stay the gyro's
+  Vector2<T> angle_rad{Vector2<T>::Zero()};
 
  private:
   SimulatedGyro<T>& gyro_;
@@ -358,6 +366,102 @@ TEST(SteadyPrecession, GivenBadInputWhenTorqueForPrecessionRateThenEachRefusalHa
   ASSERT_EQ(steady_precession_rate(rotor, out, back), Status::kOk);
   EXPECT_NEAR(back(0), 0.1, 1e-15);
   EXPECT_NEAR(back(1), 0.2, 1e-15);
+}
+
+// A reading beyond the pickoffs' physical range (valid bit set, sequence advancing) is not
+// believed: flagged invalid, not accepted, and a fault once it persists.
+TEST(ComponentPickoffs, GivenAReadingBeyondThePickoffRangeWhenSteppedThenInvalidNotAcceptedAndAFaultOnceItPersists) {
+  FaultyRig<double> rig;
+  ASSERT_TRUE(rig.start());
+  for (int k = 0; k < 20; ++k) ASSERT_EQ(rig.step(), Status::kOk);
+  const Vector2<double> accepted = rig.tm().gimbal_measured_rad;
+  const GyroComponentConfig<double> c = SeekerGyro<double>::component();
+  rig.harness.angle_override = true;
+  rig.harness.angle_rad = Vector2<double>(0.0, -(c.pickoff_range_rad + 0.01));
+  for (std::uint32_t n = 1; n < c.invalid_persistence_ticks; ++n) {
+    ASSERT_EQ(rig.step(), Status::kOk);
+    EXPECT_NE(rig.tm().flags & kPickoffInvalid, 0U) << n;
+    EXPECT_EQ(rig.tm().gimbal_measured_rad, accepted) << "the last accepted reading stands";
+    EXPECT_EQ(rig.component.mode(), GyroMode::kCaged) << n;
+  }
+  ASSERT_EQ(rig.step(), Status::kOk);
+  EXPECT_EQ(rig.component.mode(), GyroMode::kFault);
+  EXPECT_EQ(rig.tm().counters[3], c.invalid_persistence_ticks);  // kPickoffInvalid
+}
+
+// The estimator's small-angle check reaches the component's telemetry: with a limit below one
+// tick's rotation of the turning body every predicted tick is flagged and counted.
+TEST(ComponentTelemetry, GivenASmallAngleLimitBelowOneTicksRotationWhenSteppedThenSmallAngleExceededFlaggedAndCounted) {
+  for (const double limit : {1e-6, 0.01}) {
+    Sil<double> sil;
+    sil.body_rate = Vector2<double>(0.4, -0.3);  // 2e-4 rad per 0.5 ms tick
+    GyroComponentConfig<double> c = SeekerGyro<double>::component();
+    c.small_angle_limit_rad = limit;
+    ASSERT_TRUE(sil.start(c, SeekerGyro<double>::stub()));
+    sil.run(50);
+    if (limit < 2e-4) {
+      EXPECT_NE(sil.tm().flags & kSmallAngleExceeded, 0U);
+      EXPECT_GE(sil.tm().counters[1], 48U);  // every tick after the estimator's first
+    } else {
+      EXPECT_EQ(sil.tm().flags & kSmallAngleExceeded, 0U);
+      EXPECT_EQ(sil.tm().counters[1], 0U);
+    }
+    EXPECT_EQ(sil.component.mode(), GyroMode::kCaged) << "a flag, not a fault";
+  }
+}
+
+// GyroModel::correct_attitude refuses what it cannot use and then changes nothing.
+TEST(GyroModelCorrection, GivenEachBadCorrectionInputThenRefusedWithItsStatusAndStateBitIdentical) {
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(ReportSample<double>::config()).ok());
+  const Matrix3<double> r = Matrix3<double>::Identity();
+  EXPECT_EQ(g.correct_attitude(Vector2<double>(1e-3, 0.0), r), Status::kNotConfigured) << "caged";
+  ASSERT_EQ(g.uncage(r, Vector2<double>(0.1, -0.2), Vector2<double>(0.02, -0.01)), Status::kOk);
+  const Quaternion<double> q0 = g.attitude_gyro_to_earth();
+  const double pitch0 = g.gimbal_pitch_rad(), yaw0 = g.gimbal_yaw_rad();
+  const std::uint32_t flags0 = g.flags();
+  Matrix3<double> sheared = r;
+  sheared(0, 1) = 0.1;
+  EXPECT_EQ(g.correct_attitude(Vector2<double>(std::nan(""), 0.0), r), Status::kNonFiniteInput);
+  EXPECT_EQ(g.correct_attitude(Vector2<double>(1e-3, 0.0), sheared), Status::kInvalidRotation);
+  EXPECT_TRUE(testing::same_bits(g.attitude_gyro_to_earth().coeffs(), q0.coeffs()));
+  EXPECT_TRUE(testing::same_bits(g.gimbal_pitch_rad(), pitch0));
+  EXPECT_TRUE(testing::same_bits(g.gimbal_yaw_rad(), yaw0));
+  EXPECT_EQ(g.flags(), flags0);
+  // Accepted: pitching the gyro up by 1 mrad raises its gimbal pitch angle by as much.
+  ASSERT_EQ(g.correct_attitude(Vector2<double>(1e-3, 0.0), r), Status::kOk);
+  EXPECT_NEAR(g.gimbal_pitch_rad() - pitch0, 1e-3, 2e-5);
+  EXPECT_NEAR(g.gimbal_yaw_rad() - yaw0, 0.0, 2e-5);
+}
+
+// Error sources whose drift torque (H times the drift) is not representable: the step is
+// refused and the model keeps its state, rather than carrying an infinite torque into it.
+TEST(GyroModelErrorSources, GivenADriftTorqueBeyondTheLargestDoubleWhenSteppedThenRefusedAndStateBitIdentical) {
+  GyroModelConfig<double> c = ReportSample<double>::config();
+  c.errors.pitch.static_drift_rad_s = 1e306;  // finite: accepted by configure
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(c).ok());
+  ASSERT_EQ(g.uncage(Matrix3<double>::Identity(), Vector2<double>(0.1, -0.2)), Status::kOk);
+  GyroStepInput<double> in;
+  in.dt_s = 1e-3;
+  in.spin_hz = ReportSample<double>::kSpinHz;  // H = 1885: H * 1e306 overflows
+  const Quaternion<double> q0 = g.attitude_gyro_to_earth();
+  const Vector2<double> rate0 = g.rate_rad_s();
+  const Status st = g.step_torque(in, Vector2<double>::Zero());
+  EXPECT_NE(st, Status::kOk);
+  std::printf("drift torque step refused: %s\n", to_string(st));
+  EXPECT_TRUE(testing::same_bits(g.attitude_gyro_to_earth().coeffs(), q0.coeffs()));
+  EXPECT_TRUE(testing::same_bits(g.rate_rad_s(), rate0));
+  EXPECT_TRUE(all_finite(g.rate_rad_s(), g.gimbal_pitch_rad(), g.gimbal_yaw_rad()));
+}
+
+TEST(NutationMap, GivenInvalidParametersWhenMappedThenRefusedAndTheMapUntouched) {
+  NutationMap<double> map;
+  map.envelope = 42.0;
+  EXPECT_EQ(make_nutation_map(RotorParameters<double>{2.25, 2.0, -1.0, 100.0}, map), Status::kNegativeFriction);
+  EXPECT_EQ(make_nutation_map(RotorParameters<double>{0.0, 2.0, 5.0, 100.0}, map), Status::kNonPositiveInertia);
+  EXPECT_EQ(map.envelope, 42.0);
+  EXPECT_FALSE(map.has_steady);
 }
 
 }  // namespace

@@ -13,18 +13,10 @@
 #include <cstring>
 #include <string>
 
+#include "golden_file.hpp"
 #include "rotor_scenarios.hpp"
 
 namespace {
-
-void append_real(std::string& out, double v, bool is_float) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, is_float ? "%.9g" : "%.17g", v);
-  std::string s(buf);
-  if (s.find_first_of(".en") == std::string::npos) s += ".0";
-  if (is_float) s += "f";
-  out += s;
-}
 
 template <typename T>
 bool append_samples(std::string& out, const char* type_name) {
@@ -49,7 +41,7 @@ bool append_samples(std::string& out, const char* type_name) {
           out += "      {" + std::to_string(s.scenario) + ", " + std::to_string(s.step);
           for (T v : {s.angle_pitch, s.angle_yaw, s.rate_pitch, s.rate_yaw}) {
             out += ", ";
-            append_real(out, static_cast<double>(v), is_float);
+            gyro_fw::append_real(out, static_cast<double>(v), is_float);
           }
           out += "},\n";
         });
@@ -80,43 +72,8 @@ std::string generate(bool& ok) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool check = argc == 3 && std::strcmp(argv[1], "--check") == 0;
-  if (!(argc == 2 || check)) {
-    std::fprintf(stderr, "usage: %s [--check] <rotor_golden.hpp>\n", argv[0]);
-    return 2;
-  }
-  const char* path = argv[argc - 1];
   bool ok = true;
   const std::string text = generate(ok);
   if (!ok) return 1;
-  if (check) {
-    std::string have;
-    if (std::FILE* f = std::fopen(path, "rb")) {
-      char buf[4096];
-      std::size_t n;
-      while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) have.append(buf, n);
-      std::fclose(f);
-    }
-    if (have != text) {
-      std::size_t i = 0;
-      while (i < have.size() && i < text.size() && have[i] == text[i]) ++i;
-      std::size_t line = 1;
-      for (std::size_t k = 0; k < i; ++k) line += text[k] == '\n' ? 1U : 0U;
-      std::fprintf(stderr,
-                   "%s is stale (first difference at line %zu): regenerate with\n"
-                   "  cmake --build --preset host --target gyro_fw_update_rotor_golden\n",
-                   path, line);
-      return 1;
-    }
-    std::printf("%s is up to date\n", path);
-    return 0;
-  }
-  std::FILE* f = std::fopen(path, "wb");
-  if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size()) {
-    std::fprintf(stderr, "cannot write %s\n", path);
-    return 1;
-  }
-  std::fclose(f);
-  std::printf("wrote %s\n", path);
-  return 0;
+  return gyro_fw::write_or_check(argc, argv, text, "gyro_fw_update_rotor_golden");
 }

@@ -243,7 +243,7 @@ class GyroModel {
     bool out = g.cosine_of_cone < cos_cone_limit_;
     if (config_.pitch_gimbal_limit_rad > T(0)) out = out || std::abs(g.pitch_rad) > config_.pitch_gimbal_limit_rad;
     if (config_.yaw_gimbal_limit_rad > T(0)) out = out || std::abs(g.yaw_rad) > config_.yaw_gimbal_limit_rad;
-    return out ? kFlagGimbalLimit : 0u;
+    return out ? static_cast<std::uint32_t>(kFlagGimbalLimit) : 0u;
   }
 
   GyroModelConfig<T> config_{};

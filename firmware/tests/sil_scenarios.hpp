@@ -1,0 +1,134 @@
+// The closed loop the firmware runs on the target and the host generator
+// (firmware/golden/gen_sil_golden.cpp) runs on the host to produce sil_golden.hpp: the flight
+// component against the SIL stub, one code path on both sides. A small SI seeker gyro at
+// 2 kHz: caged, uncaged, slewing, holding; the second scenario loses a torquer mid-slew.
+#pragma once
+
+#include <cstdint>
+
+#include "gyro/gyro_component.hpp"
+#include "gyro/simulated_gyro.hpp"
+
+namespace gyro_fw {
+
+struct SilScenario {
+  const char* name;
+  int ticks;
+  int dead_torquer_tick;  // 0 = no fault
+};
+
+inline constexpr SilScenario kSilScenarios[] = {
+    {"seeker_slew", 3000, 0},
+    {"seeker_dead_torquer", 3000, 1500},
+};
+inline constexpr int kSilScenarioCount = static_cast<int>(sizeof(kSilScenarios) / sizeof(kSilScenarios[0]));
+inline constexpr int kSilCheckpointEvery = 250;
+
+template <typename T>
+struct SilSample {
+  int scenario;
+  int tick;
+  int mode;
+  std::uint32_t flags;
+  T gimbal_pitch, gimbal_yaw;        // the stub's truth
+  T predicted_pitch, predicted_yaw;  // the component's estimate
+  T rate_pitch, rate_yaw;            // estimated precession
+  T torque_pitch, torque_yaw;        // commanded
+};
+
+template <typename T>
+gyro::GyroComponentConfig<T> sil_component_config() noexcept {
+  gyro::GyroComponentConfig<T> c;
+  c.tick_s = T(5e-4);
+  c.pitch_inertia = T(2e-5);
+  c.yaw_inertia = T(2e-5);
+  c.spin_inertia = T(3e-5);
+  c.friction = T(4e-4);
+  c.nominal_spin_hz = T(400);
+  c.min_spin_hz = T(300);
+  c.max_pitch_rate_rad_s = T(1);
+  c.max_yaw_rate_rad_s = T(1);
+  c.max_torque = T(0.1);
+  c.cage_gain_1_s = T(20);
+  c.gimbal_cone_limit_rad = T(0.5);
+  c.gimbal_stop_margin_rad = T(0.05);
+  c.pickoff_range_rad = T(0.6);
+  c.max_pickoff_step_rad = T(5e-3);
+  c.estimator_gain = T(0.02);
+  c.residual_limit_rad = T(2e-3);
+  c.residual_persistence_ticks = 20;
+  c.invalid_persistence_ticks = 10;
+  c.spin_low_persistence_ticks = 50;
+  c.torquer_fail_persistence_ticks = 5;
+  c.uncage_settle_ticks = 400;
+  return c;
+}
+
+template <typename T>
+gyro::SimulatedGyroConfig<T> sil_stub_config(const SilScenario& s) noexcept {
+  gyro::SimulatedGyroConfig<T> g;
+  g.gyro.pitch_inertia = T(2e-5);
+  g.gyro.yaw_inertia = T(2e-5);
+  g.gyro.spin_inertia = T(3e-5);
+  g.gyro.friction = T(4e-4);
+  g.gyro.gimbal_cone_limit_rad = T(0.5);
+  g.gyro.max_pitch_rate_rad_s = T(10);
+  g.gyro.max_yaw_rate_rad_s = T(10);
+  g.tick_s = T(5e-4);
+  g.spin_hz = T(400);
+  g.pickoff.noise_rad = T(2e-5);
+  g.pickoff.bias_rad = gyro::Vector2<T>(T(1e-4), T(-5e-5));
+  g.pickoff.lag_s = T(2e-4);
+  g.torquer.scale_factor = gyro::Vector2<T>(T(1.01), T(0.99));
+  g.gimbal_stop_rad = T(0.55);
+  g.seed = 7;
+  if (s.dead_torquer_tick > 0) {
+    g.faults[0].kind = gyro::FaultKind::kDeadTorquer;
+    g.faults[0].start_tick = static_cast<std::uint64_t>(s.dead_torquer_tick);
+  }
+  return g;
+}
+
+// Runs scenario `s` (number `index`) in T, calling sink(SilSample<T>) at every checkpoint.
+// Returns the first status that is not kOk, else kOk. No heap: everything is on the stack.
+template <typename T, typename Sink>
+[[nodiscard]] gyro::Status run_sil_scenario(const SilScenario& s, int index, Sink&& sink) noexcept {
+  gyro::SimulatedGyro<T> stub;
+  gyro::GyroComponent<T> component(stub);
+  const gyro::Matrix3<T> level = gyro::Matrix3<T>::Identity();
+  gyro::Matrix3<T> r_eb = level;
+  const gyro::Vector2<T> body_rate(T(0.1), T(-0.05));
+  if (!stub.configure(sil_stub_config<T>(s)).ok()) return gyro::Status::kOutOfRange;
+  gyro::Status st = stub.start(r_eb, body_rate);
+  if (st != gyro::Status::kOk) return st;
+  if (!component.configure(sil_component_config<T>()).ok()) return gyro::Status::kOutOfRange;
+  st = component.activate();
+  if (st != gyro::Status::kOk) return st;
+  const T dt = T(5e-4);
+  const gyro::Matrix3<T> turn = gyro::frame_rotation_z(body_rate(1) * dt) * gyro::frame_rotation_y(body_rate(0) * dt);
+  gyro::GuidanceInput<T> in;
+  in.nav_valid = true;
+  in.body_rate_rad_s = body_rate;
+  for (int k = 1; k <= s.ticks; ++k) {
+    r_eb = turn * r_eb;
+    st = stub.advance(static_cast<std::uint64_t>(k), r_eb, gyro::Vector2<T>::Zero());
+    if (st != gyro::Status::kOk) return st;
+    in.R_earth_to_body = r_eb;
+    in.request = (k == 200) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
+    in.slew_rate_cmd_rad_s = (k < 1000)   ? gyro::Vector2<T>::Zero()
+                             : (k < 2200) ? gyro::Vector2<T>(T(0.3), T(-0.2))
+                                          : body_rate;
+    st = component.step(static_cast<std::uint64_t>(k), in);
+    if (st != gyro::Status::kOk) return st;
+    if (k % kSilCheckpointEvery == 0 || k == s.ticks) {
+      const gyro::GyroTelemetry<T>& tm = component.telemetry();
+      sink(SilSample<T>{index, k, static_cast<int>(tm.mode), tm.flags, stub.truth().gimbal_pitch_rad(),
+                        stub.truth().gimbal_yaw_rad(), tm.gimbal_predicted_rad(0), tm.gimbal_predicted_rad(1),
+                        tm.precession_rate_rad_s(0), tm.precession_rate_rad_s(1), tm.torque_cmd(0),
+                        tm.torque_cmd(1)});
+    }
+  }
+  return gyro::Status::kOk;
+}
+
+}  // namespace gyro_fw

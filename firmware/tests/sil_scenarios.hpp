@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "gyro/gyro_component.hpp"
+#include "gyro/seeker_example.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro_fw {
@@ -38,49 +39,19 @@ struct SilSample {
 
 template <typename T>
 gyro::GyroComponentConfig<T> sil_component_config() noexcept {
-  gyro::GyroComponentConfig<T> c;
-  c.tick_s = T(5e-4);
-  c.pitch_inertia = T(2e-5);
-  c.yaw_inertia = T(2e-5);
-  c.spin_inertia = T(3e-5);
-  c.friction = T(4e-4);
-  c.nominal_spin_hz = T(400);
-  c.min_spin_hz = T(300);
-  c.max_pitch_rate_rad_s = T(1);
-  c.max_yaw_rate_rad_s = T(1);
-  c.max_torque = T(0.1);
-  c.cage_gain_1_s = T(20);
-  c.gimbal_cone_limit_rad = T(0.5);
-  c.gimbal_stop_margin_rad = T(0.05);
-  c.pickoff_range_rad = T(0.6);
-  c.max_pickoff_step_rad = T(5e-3);
-  c.estimator_gain = T(0.02);
-  c.residual_limit_rad = T(2e-3);
-  c.residual_persistence_ticks = 20;
-  c.invalid_persistence_ticks = 10;
-  c.spin_low_persistence_ticks = 50;
-  c.torquer_fail_persistence_ticks = 5;
-  c.uncage_settle_ticks = 400;
+  gyro::GyroComponentConfig<T> c = gyro::SeekerExample<T>::component();
+  c.estimator_gain = T(0.02);  // the fault campaign's choice
   return c;
 }
 
+// The example hardware with the imperfections a real one has.
 template <typename T>
 gyro::SimulatedGyroConfig<T> sil_stub_config(const SilScenario& s) noexcept {
-  gyro::SimulatedGyroConfig<T> g;
-  g.gyro.pitch_inertia = T(2e-5);
-  g.gyro.yaw_inertia = T(2e-5);
-  g.gyro.spin_inertia = T(3e-5);
-  g.gyro.friction = T(4e-4);
-  g.gyro.gimbal_cone_limit_rad = T(0.5);
-  g.gyro.max_pitch_rate_rad_s = T(10);
-  g.gyro.max_yaw_rate_rad_s = T(10);
-  g.tick_s = T(5e-4);
-  g.spin_hz = T(400);
+  gyro::SimulatedGyroConfig<T> g = gyro::SeekerExample<T>::stub();
   g.pickoff.noise_rad = T(2e-5);
   g.pickoff.bias_rad = gyro::Vector2<T>(T(1e-4), T(-5e-5));
   g.pickoff.lag_s = T(2e-4);
   g.torquer.scale_factor = gyro::Vector2<T>(T(1.01), T(0.99));
-  g.gimbal_stop_rad = T(0.55);
   g.seed = 7;
   if (s.dead_torquer_tick > 0) {
     g.faults[0].kind = gyro::FaultKind::kDeadTorquer;

@@ -1,67 +1,18 @@
 // Test fixture: the flight component against the SIL stub, with a body turning at constant
-// rates, one tick at a time. A small SI seeker gyro at a 2 kHz tick.
+// rates, one tick at a time. The seeker example gyro (gyro/seeker_example.hpp) at 2 kHz.
 #pragma once
 
 #include <cstdint>
 #include <cstring>
 
 #include "gyro/gyro_component.hpp"
+#include "gyro/seeker_example.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro::testing {
 
 template <typename T>
-struct SeekerGyro {
-  static constexpr T kTick = T(5e-4);     // 2 kHz
-  static constexpr T kJ = T(2e-5);        // kg m^2, pitch and yaw
-  static constexpr T kJ0 = T(3e-5);       // spin axis
-  static constexpr T kFriction = T(4e-4); // alpha = f/J = 20 1/s: nutation decays in 50 ms
-  static constexpr T kSpinHz = T(400);
-
-  static GyroComponentConfig<T> component() {
-    GyroComponentConfig<T> c;
-    c.tick_s = kTick;
-    c.pitch_inertia = kJ;
-    c.yaw_inertia = kJ;
-    c.spin_inertia = kJ0;
-    c.friction = kFriction;
-    c.nominal_spin_hz = kSpinHz;
-    c.min_spin_hz = T(300);
-    c.max_pitch_rate_rad_s = T(1);
-    c.max_yaw_rate_rad_s = T(1);
-    c.max_torque = T(0.1);  // H = 0.0754 N m s: 1.3 rad/s of precession
-    c.cage_gain_1_s = T(20);
-    c.gimbal_cone_limit_rad = T(0.5);
-    c.gimbal_stop_margin_rad = T(0.05);
-    c.pickoff_range_rad = T(0.6);
-    c.max_pickoff_step_rad = T(5e-3);
-    c.estimator_gain = T(0.005);
-    c.residual_limit_rad = T(2e-3);
-    c.residual_persistence_ticks = 20;
-    c.invalid_persistence_ticks = 10;
-    c.spin_low_persistence_ticks = 50;
-    c.torquer_fail_persistence_ticks = 5;
-    c.uncage_settle_ticks = 400;
-    return c;
-  }
-
-  static SimulatedGyroConfig<T> stub() {
-    SimulatedGyroConfig<T> s;
-    s.gyro.pitch_inertia = kJ;
-    s.gyro.yaw_inertia = kJ;
-    s.gyro.spin_inertia = kJ0;
-    s.gyro.friction = kFriction;
-    s.gyro.gimbal_cone_limit_rad = T(0.5);
-    s.gyro.max_pitch_rate_rad_s = T(10);
-    s.gyro.max_yaw_rate_rad_s = T(10);
-    s.tick_s = kTick;
-    s.spin_hz = kSpinHz;
-    s.has_spin_readback = true;
-    s.gimbal_stop_rad = T(0.55);
-    s.seed = 1;
-    return s;
-  }
-};
+using SeekerGyro = SeekerExample<T>;
 
 template <typename T>
 class Sil {

@@ -48,6 +48,7 @@ template class SimulatedGyro<double>;  // NOLINT(cppcoreguidelines-virtual-class
 }  // namespace gyro
 
 #include "gyro/report_sample.hpp"
+#include "gyro/seeker_example.hpp"
 
 namespace gyro {
 namespace flight_rules_check {
@@ -59,6 +60,8 @@ struct IgnoreStep {
 }  // namespace flight_rules_check
 template struct ReportSample<float>;
 template struct ReportSample<double>;
+template struct SeekerExample<float>;
+template struct SeekerExample<double>;
 template SampleRunSummary run_report_sample<float, flight_rules_check::IgnoreStep>(
     float, int, flight_rules_check::IgnoreStep&&) noexcept;
 template SampleRunSummary run_report_sample<double, flight_rules_check::IgnoreStep>(

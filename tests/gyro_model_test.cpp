@@ -239,9 +239,14 @@ std::vector<double> orthonormality_run(long steps, const std::vector<long>& chec
 }
 
 TEST(GyroModelOrthonormality, GivenNutatingSlewingGyroUnderTurningBodyWhen1e7DoubleStepsThenAttitudeStaysOrthonormalTo1e12) {
+#if defined(GYRO_TEST_UNDER_EMULATION)
+  // Under qemu-user 1e7 steps take minutes; the host runs the full 1e7.
+  const std::vector<long> at = {1000, 100000, 1000000};
+#else
   const std::vector<long> at = {1000, 100000, 1000000, 10000000};
+#endif
   double worst = 0;
-  const std::vector<double> err = orthonormality_run<double>(10000000, at, worst);
+  const std::vector<double> err = orthonormality_run<double>(at.back(), at, worst);
   ASSERT_EQ(err.size(), at.size());
   for (std::size_t i = 0; i < at.size(); ++i) {
     std::printf("double: orthonormality error of R_earth_to_gyro after %8ld steps: %.3g\n", at[i], err[i]);

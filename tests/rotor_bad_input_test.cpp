@@ -458,7 +458,8 @@ TYPED_TEST(NutationAmplitudeOf, GivenFrictionThroughCriticalWhenNutationAmplitud
   ASSERT_EQ(nutation_amplitude(exact, w, torque, amp), Status::kOk);
   Vector2<T> w_ss = Vector2<T>::Zero();
   ASSERT_EQ(steady_precession_rate(exact, torque, w_ss), Status::kOk);
-  for (int i = 0; i < 2; ++i) EXPECT_NEAR(amp(i), std::abs(w(i) - w_ss(i)) * T(2) / T(3), T(8) * eps);
+  // 16 eps: armhf's unfused NEON float arithmetic lands 9 eps away on a value of 0.18.
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(amp(i), std::abs(w(i) - w_ss(i)) * T(2) / T(3), T(16) * eps);
 }
 
 // The angle's transient from a fine simulation with the exact step: angle(t) minus the

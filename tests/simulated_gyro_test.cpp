@@ -298,7 +298,7 @@ TEST(SimulatedGyroPickoff, GivenNoiseThenEachAxisDrawsItsOwnNamedStreamIndexedBy
   const NoiseStream<double> pitch(123, static_cast<std::uint64_t>(NoiseStreamId::kPickoffNoisePitch));
   const NoiseStream<double> yaw(123, static_cast<std::uint64_t>(NoiseStreamId::kPickoffNoiseYaw));
   const std::vector<Sample> s = run(c, 200, kTurnForNoise);
-  for (std::uint64_t k = 0; k < s.size(); ++k) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
     ASSERT_NEAR(s[k].reading.gimbal_angle_rad(0) - s[k].truth(0), 1e-4 * pitch.gaussian(k), 1e-15) << k;
     ASSERT_NEAR(s[k].reading.gimbal_angle_rad(1) - s[k].truth(1), 1e-4 * yaw.gaussian(k), 1e-15) << k;
   }
@@ -461,7 +461,7 @@ Config with_fault(FaultKind kind, std::uint64_t start, std::uint64_t duration, i
   return c;
 }
 
-constexpr std::uint64_t kStart = 100, kDuration = 50, kEnd = kStart + kDuration;
+constexpr std::size_t kStart = 100, kDuration = 50, kEnd = kStart + kDuration;
 const V2 kTurn(0.3, -0.2);  // the body turns: the gimbal angles change every tick
 
 void expect_active_exactly_in_window(const std::vector<Sample>& s, FaultKind kind) {
@@ -475,20 +475,20 @@ TEST(SimulatedGyroFaults, GivenStuckPickoffThenReadingFreezesSequenceCountsAndIt
   const std::vector<Sample> s = run(with_fault(FaultKind::kStuckPickoff, kStart, kDuration, 0), 200, kTurn);
   expect_active_exactly_in_window(s, FaultKind::kStuckPickoff);
   const double frozen = s[kStart - 1].reading.gimbal_angle_rad(0);
-  for (std::uint64_t k = kStart; k < kEnd; ++k) {
+  for (std::size_t k = kStart; k < kEnd; ++k) {
     ASSERT_EQ(s[k].reading.gimbal_angle_rad(0), frozen) << k;                      // stuck
     ASSERT_EQ(s[k].reading.gimbal_angle_rad(1), s[k].truth(1)) << k;               // yaw alive
     ASSERT_EQ(s[k].reading.sequence, k + 1) << k;                                  // counting
     ASSERT_TRUE(s[k].reading.valid);
   }
   EXPECT_NE(s[kStart].truth(0), frozen);
-  for (std::uint64_t k = kEnd; k < s.size(); ++k) ASSERT_EQ(s[k].reading.gimbal_angle_rad(0), s[k].truth(0));
+  for (std::size_t k = kEnd; k < s.size(); ++k) ASSERT_EQ(s[k].reading.gimbal_angle_rad(0), s[k].truth(0));
 }
 
 TEST(SimulatedGyroFaults, GivenInvalidReadingOnOneAxisThenNanWithValidSet) {
   const std::vector<Sample> s = run(with_fault(FaultKind::kInvalidReading, kStart, kDuration, 1), 200, kTurn);
   expect_active_exactly_in_window(s, FaultKind::kInvalidReading);
-  for (std::uint64_t k = 0; k < s.size(); ++k) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
     const bool in = k >= kStart && k < kEnd;
     ASSERT_TRUE(s[k].reading.valid) << k;
     ASSERT_EQ(std::isnan(s[k].reading.gimbal_angle_rad(1)), in) << k;
@@ -499,7 +499,7 @@ TEST(SimulatedGyroFaults, GivenInvalidReadingOnOneAxisThenNanWithValidSet) {
 
 TEST(SimulatedGyroFaults, GivenInvalidReadingOnBothAxesThenNanWithValidClear) {
   const std::vector<Sample> s = run(with_fault(FaultKind::kInvalidReading, kStart, kDuration, -1), 200, kTurn);
-  for (std::uint64_t k = 0; k < s.size(); ++k) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
     const bool in = k >= kStart && k < kEnd;
     ASSERT_EQ(s[k].reading.valid, !in) << k;
     ASSERT_EQ(std::isnan(s[k].reading.gimbal_angle_rad(0)), in) << k;
@@ -512,7 +512,7 @@ TEST(SimulatedGyroFaults, GivenDropoutThenWholeReadingIsStaleUntilItEnds) {
   const std::vector<Sample> s = run(with_fault(FaultKind::kDropout, kStart, kDuration, -1), 200, kTurn);
   expect_active_exactly_in_window(s, FaultKind::kDropout);
   const PickoffReading<double>& last = s[kStart - 1].reading;
-  for (std::uint64_t k = kStart; k < kEnd; ++k) {
+  for (std::size_t k = kStart; k < kEnd; ++k) {
     ASSERT_EQ(s[k].reading.sequence, last.sequence) << k;
     ASSERT_EQ(s[k].reading.gimbal_angle_rad, last.gimbal_angle_rad) << k;
   }
@@ -524,7 +524,7 @@ TEST(SimulatedGyroFaults, GivenBiasJumpThenBiasAddsOnItsAxisInItsWindow) {
   for (int axis : {-1, 0, 1}) {
     const std::vector<Sample> s = run(with_fault(FaultKind::kBiasJump, kStart, kDuration, axis, 3e-3), 200, kTurn);
     expect_active_exactly_in_window(s, FaultKind::kBiasJump);
-    for (std::uint64_t k = 0; k < s.size(); ++k) {
+    for (std::size_t k = 0; k < s.size(); ++k) {
       const bool in = k >= kStart && k < kEnd;
       for (int i = 0; i < 2; ++i) {
         const double expected = (in && (axis < 0 || axis == i)) ? 3e-3 : 0.0;
@@ -581,7 +581,7 @@ TEST(SimulatedGyroFaults, GivenSpinMotorFailureThenSpinDecaysInItsWindowAndHolds
   const double tau = 0.2;
   const std::vector<Sample> s = run(with_fault(FaultKind::kSpinMotorFailure, kStart, kDuration, -1, tau), 200, kTurn);
   expect_active_exactly_in_window(s, FaultKind::kSpinMotorFailure);
-  for (std::uint64_t k = 0; k < s.size(); ++k) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
     const double t_fail = static_cast<double>(std::min(std::max(k, kStart), kEnd) - kStart) * kDt;
     ASSERT_NEAR(s[k].spin_hz, kSpinHz * std::exp(-t_fail / tau), 1e-11) << k;
     ASSERT_EQ(s[k].reading.spin_hz, s[k].spin_hz);

@@ -139,7 +139,7 @@ TEST(SimulatedGyroHold, GivenTorqueWrittenEachTickWhenAdvancedThenTruthIsGyroMod
   ASSERT_EQ(ref.uncage(body.R, body.rate_rad_s), Status::kOk);
 
   const double h = h_of(kSpinHz);
-  for (std::uint64_t k = 0; k < 300; ++k) {
+  for (std::size_t k = 0; k < 300; ++k) {
     // A command that changes every 7 ticks (held in between: no write).
     const double t = static_cast<double>(k / 7) * 7 * kDt;
     const V2 cmd(h * 0.05 * std::sin(3 * t), -h * 0.04 * std::cos(2 * t));
@@ -246,7 +246,7 @@ TEST(SimulatedGyroPickoff, GivenLagWhenGimbalStepsThenReadingReaches63PercentAft
   // The body jumps 0.01 rad nose up at tick 1: the inertial gyro's pitch gimbal steps to -0.01.
   const M3 R = frame_rotation_y(0.01);
   std::vector<double> fraction{0.0};
-  for (std::uint64_t k = 1; k <= 100; ++k) {
+  for (std::size_t k = 1; k <= 100; ++k) {
     ASSERT_EQ(sim.advance(k, R, V2::Zero()), Status::kOk);
     ASSERT_NEAR(sim.truth().gimbal_pitch_rad(), -0.01, 1e-12);
     fraction.push_back(read(sim).gimbal_angle_rad(0) / sim.truth().gimbal_pitch_rad());
@@ -331,7 +331,7 @@ TEST(SimulatedGyroTorquer, GivenScaleFactorAndSaturationThenAppliedTorqueIsScale
   GyroModel<double> ref;
   ASSERT_TRUE(ref.configure(c.gyro).ok());
   ASSERT_EQ(ref.uncage(M3::Identity(), V2::Zero()), Status::kOk);
-  for (std::uint64_t k = 1; k <= 50; ++k) {
+  for (std::size_t k = 1; k <= 50; ++k) {
     GyroStepInput<double> in;
     in.dt_s = kDt;
     in.spin_hz = kSpinHz;
@@ -355,7 +355,7 @@ TEST(SimulatedGyroStop, GivenBodyTurningPastTheStopThenGimbalIsHeldOnTheStopAndD
   std::uint64_t first_hit = 0;
   int hits = 0;
   double max_cone = 0;
-  for (std::uint64_t k = 1; k <= 400; ++k) {
+  for (std::size_t k = 1; k <= 400; ++k) {
     body.step();
     ASSERT_EQ(sim.advance(k, body.R, V2::Zero()), Status::kOk);
     const double cone = sim.truth().gimbal_cone_rad();
@@ -396,7 +396,7 @@ TEST(SimulatedGyroStop, GivenImpactThenGimbalRatesAreTheBodyRates) {
   Body body;
   body.rate_rad_s = V2(3.0, 0.0);
   ASSERT_EQ(sim.start(body.R, V2::Zero()), Status::kOk);
-  for (std::uint64_t k = 1; k <= 100; ++k) {
+  for (std::size_t k = 1; k <= 100; ++k) {
     body.step();
     ASSERT_EQ(sim.advance(k, body.R, V2::Zero()), Status::kOk);
     if (sim.at_gimbal_stop()) {
@@ -443,7 +443,7 @@ TEST(SimulatedGyroSpin, GivenSpinDownThenEachStepUsesTheMidStepSpin) {
   ASSERT_EQ(sim.start(M3::Identity(), V2(0.1, 0.0)), Status::kOk);
   ASSERT_EQ(ref.uncage(M3::Identity(), V2(0.1, 0.0)), Status::kOk);
   ASSERT_EQ(sim.write_torquer(V2(1.0, 0.0)), PortStatus::kOk);
-  for (std::uint64_t k = 1; k <= 100; ++k) {
+  for (std::size_t k = 1; k <= 100; ++k) {
     GyroStepInput<double> in;
     in.dt_s = kDt;
     in.spin_hz = kSpinHz * std::exp(-(static_cast<double>(k) - 0.5) * kDt / 0.3);
@@ -538,7 +538,7 @@ TEST(SimulatedGyroFaults, GivenDeadTorquerThenAppliedTorqueIsZeroOnItsAxisInItsW
   const V2 cmd(0.8, -0.6);
   const std::vector<Sample> s = run(with_fault(FaultKind::kDeadTorquer, kStart, kDuration, 0), 200, kTurn, cmd);
   expect_active_exactly_in_window(s, FaultKind::kDeadTorquer);
-  for (std::uint64_t k = 1; k < s.size(); ++k) {
+  for (std::size_t k = 1; k < s.size(); ++k) {
     const bool in = k >= kStart && k < kEnd;
     ASSERT_EQ(s[k].applied_torque, V2(in ? 0.0 : 0.8, -0.6)) << k;
   }
@@ -548,7 +548,7 @@ TEST(SimulatedGyroFaults, GivenSaturatedTorquerThenAppliedTorqueIsPinnedWhatever
   const std::vector<Sample> s =
       run(with_fault(FaultKind::kSaturatedTorquer, kStart, kDuration, 1, 2.5), 200, kTurn, V2(0.1, -0.3));
   expect_active_exactly_in_window(s, FaultKind::kSaturatedTorquer);
-  for (std::uint64_t k = 1; k < s.size(); ++k) {
+  for (std::size_t k = 1; k < s.size(); ++k) {
     const bool in = k >= kStart && k < kEnd;
     ASSERT_EQ(s[k].applied_torque, V2(0.1, in ? 2.5 : -0.3)) << k;
   }
@@ -566,7 +566,7 @@ TEST(SimulatedGyroFaults, GivenTorquerFaultThenRotorFeelsItOverTheTicksOfItsWind
   ASSERT_EQ(sim.start(M3::Identity(), V2::Zero()), Status::kOk);
   ASSERT_EQ(ref.uncage(M3::Identity(), V2::Zero()), Status::kOk);
   ASSERT_EQ(sim.write_torquer(cmd), PortStatus::kOk);
-  for (std::uint64_t k = 0; k < 200; ++k) {
+  for (std::size_t k = 0; k < 200; ++k) {
     GyroStepInput<double> in;
     in.dt_s = kDt;
     in.spin_hz = kSpinHz;
@@ -725,7 +725,7 @@ TEST(SimulatedGyroFloat, GivenFloatStubThenItTracksTheDoubleStub) {
   ASSERT_EQ(d.start(body.R, V2::Zero()), Status::kOk);
   ASSERT_EQ(f.write_torquer(Vector2<float>(1.0f, -1.0f)), PortStatus::kOk);
   ASSERT_EQ(d.write_torquer(V2(1.0, -1.0)), PortStatus::kOk);
-  for (std::uint64_t k = 1; k <= 500; ++k) {
+  for (std::size_t k = 1; k <= 500; ++k) {
     body.step();
     Rf = body.R.cast<float>();
     ASSERT_EQ(f.advance(k, Rf, Vector2<float>::Zero()), Status::kOk);

@@ -35,10 +35,16 @@ template <typename T>
     // Truncation below h^8/8! = 1e-17 for h <= 0.025: exact to rounding.
     c = T(1) - h2 * (T(1) / T(2) - h2 * (T(1) / T(24) - h2 * (T(1) / T(720))));
     s = (T(1) - h2 * (T(1) / T(6) - h2 * (T(1) / T(120) - h2 * (T(1) / T(5040))))) / T(2);
-  } else {
+  } else if (std::isfinite(h2)) {
     const T h = std::sqrt(h2);
     c = std::cos(h);
     s = std::sin(h) / (T(2) * h);
+  } else {
+    // The squares overflowed (angles beyond 1e154 rad in double, 1e19 in float): the same
+    // from the half angles without squaring, so the result is still a unit quaternion.
+    const T h = std::hypot(th / T(2), ps / T(2));
+    c = std::cos(h);
+    s = (std::sin(h) / h) / T(2);
   }
   return Quaternion<T>(c, T(0), s * th, s * ps);
 }

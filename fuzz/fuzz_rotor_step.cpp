@@ -13,11 +13,13 @@
 //   - make_transition + advance equals propagate bit for bit (status and state), step after step;
 //   - nutation_amplitude, steady_precession_rate, torque_for_precession_rate, compute_modes:
 //     a refusal leaves the output untouched, an acceptance gives finite (and for the amplitude
-//     non-negative) values.
+//     non-negative) values;
+//   - step_rotation of any finite (theta, psi) is a unit quaternion (the step's attitude).
 #include <array>
 #include <cstdint>
 
 #include "fuzz_support.hpp"
+#include "gyro/attitude.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
 
@@ -141,6 +143,15 @@ void check_auxiliaries(const gyro::RotorParameters<T>& prm, const gyro::Vector2<
 }
 
 template <typename T>
+void check_step_rotation(const gyro::Vector2<T>& angle) {
+  const gyro::Quaternion<T> q = gyro::step_rotation(angle);
+  if (finite_coeffs(angle)) {
+    GYRO_FUZZ_CHECK(finite_coeffs(q.coeffs()));
+    GYRO_FUZZ_CHECK(std::abs(q.norm() - T(1)) <= T(16) * std::numeric_limits<T>::epsilon());
+  }
+}
+
+template <typename T>
 void run(const Case<T>& c) {
   const gyro::RotorParameters<T> prm{c.j1, c.j2, c.f, c.h};
   const gyro::Status valid = gyro::validate(prm);
@@ -166,6 +177,8 @@ void run(const Case<T>& c) {
   by_advance.rate_rad_s << c.w1, c.w2;
   gyro::RotorState<T> by_propagate = by_advance;
   check_auxiliaries(prm, by_advance.rate_rad_s, gyro::Vector2<T>(c.torque[0], c.torque[1]));
+  check_step_rotation(by_advance.angle_rad);
+  check_step_rotation(by_advance.rate_rad_s);
 
   for (int k = 0; k < c.steps; ++k) {
     const std::size_t i = static_cast<std::size_t>(2 * k);

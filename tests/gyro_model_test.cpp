@@ -1282,6 +1282,22 @@ TYPED_TEST(GyroBadInput, GivenEachBadStepInputThenItsStatusAndStateBitIdentical)
   }
 }
 
+// Finite inputs whose torque overflows in the torquer model (cross-coupling adds a share
+// of the other axis' torque): a numerical overflow, not a non-finite input, and no change.
+TYPED_TEST(GyroBadInput, GivenFiniteTorqueThatOverflowsThroughCrossCouplingThenNumericalOverflowAndStateBitIdentical) {
+  using T = TypeParam;
+  GyroModelConfig<T> c = test_config<T>();
+  c.errors.yaw.torquer_cross_coupling = T(0.5);
+  GyroModel<T> g = uncaged_model<T>(c, Vector2<T>(T(0.2), T(-0.1)), Vector2<T>(T(0.01), T(0.02)),
+                                    some_body_attitude<T>());
+  const GyroStepInput<T> in = step_input<T>(T(1e-3), kSpinHz<T>, some_body_attitude<T>());
+  const T big = std::numeric_limits<T>::max();
+  const Observed<T> before = observe(g);
+  EXPECT_EQ(g.step_torque(in, Vector2<T>(big, -big)), Status::kNumericalOverflow);
+  EXPECT_TRUE(bit_identical(before, observe(g)));
+  EXPECT_EQ(g.step_torque(in, Vector2<T>(T(10), T(-20))), Status::kOk);
+}
+
 TYPED_TEST(GyroBadInput, GivenBadUncageInputThenRefusedAndStateBitIdentical) {
   using T = TypeParam;
   const T nan = std::numeric_limits<T>::quiet_NaN();

@@ -174,6 +174,9 @@ class GyroModel {
       torque += torque_for_rate_frictionless(prm.angular_momentum, coulomb_drift(config_.errors, precession));
     }
 
+    // Finite inputs can still overflow here (cross-coupling, drift torques of huge spins).
+    if (!all_finite(torque)) return Status::kNumericalOverflow;
+
     RotorState<T> s;  // the ISAF starts at the gyro's attitude: angles zero (listing kept them)
     s.rate_rad_s = rate_rad_s_;
     const Status adv = advance(transition_, torque, s);

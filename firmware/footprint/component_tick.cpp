@@ -6,7 +6,7 @@
 // The program configures a small seeker gyro (2 kHz tick), activates it, uncages it and
 // ticks it held still (zero slew command, body at rest, pickoffs steady), so every tick
 // takes the nominal path: read and validate, predict, check the residual, estimate, torque
-// law, write, telemetry. Stack is measured by painting (see rotor_tick.cpp). It prints
+// law, write, telemetry. Stack is measured by painting (stack_paint.hpp). It prints
 //   stack configure <bytes>
 //   stack tick <bytes>
 // and exits 0 when every call returned kOk and the component ends free with no flag raised.
@@ -15,6 +15,8 @@
 #include "fw_io.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/gyro_port.hpp"
+#include "gyro/seeker_example.hpp"  // the example gyro's constants only: no stub code is used
+#include "stack_paint.hpp"
 
 #if defined(__ARM_FP) && !(__ARM_FP & 0x8)
 using Scalar = float;
@@ -22,11 +24,8 @@ using Scalar = float;
 using Scalar = double;
 #endif
 
-extern "C" std::uint32_t __stack_limit[];  // mps2.ld: the lowest address of the stack
-
 namespace {
 
-constexpr std::uint32_t kPaint = 0xA5A5A5A5U;
 constexpr std::uint32_t kUncageTick = 10;
 constexpr std::uint32_t kTicks = 2000;
 
@@ -58,30 +57,12 @@ class RegisterPort final : public gyro::GyroPort<Scalar> {
   std::uint32_t sequence_ = 0;
 };
 
-// A seeker gyro: J = 2e-5, J0 = 3e-5 kg m^2, f = 4e-4 N m s, 400 Hz spin, 2 kHz tick.
+// The example seeker gyro (J = 2e-5, J0 = 3e-5 kg m^2, f = 4e-4 N m s, 400 Hz, 2 kHz tick),
+// with the fault campaign's estimator gain and residual limit (docs/fault-campaign.md).
 gyro::GyroComponentConfig<Scalar> seeker_config() noexcept {
-  gyro::GyroComponentConfig<Scalar> c;
-  c.tick_s = static_cast<Scalar>(5e-4);
-  c.pitch_inertia = static_cast<Scalar>(2e-5);
-  c.yaw_inertia = static_cast<Scalar>(2e-5);
-  c.spin_inertia = static_cast<Scalar>(3e-5);
-  c.friction = static_cast<Scalar>(4e-4);
-  c.nominal_spin_hz = static_cast<Scalar>(400);
-  c.min_spin_hz = static_cast<Scalar>(300);
-  c.max_pitch_rate_rad_s = 1;
-  c.max_yaw_rate_rad_s = 1;
-  c.max_torque = static_cast<Scalar>(0.1);
-  c.cage_gain_1_s = 20;
-  c.gimbal_cone_limit_rad = static_cast<Scalar>(0.5);
-  c.gimbal_stop_margin_rad = static_cast<Scalar>(0.05);
-  c.pickoff_range_rad = static_cast<Scalar>(0.6);
-  c.max_pickoff_step_rad = static_cast<Scalar>(5e-3);
+  gyro::GyroComponentConfig<Scalar> c = gyro::SeekerExample<Scalar>::component();
   c.estimator_gain = static_cast<Scalar>(0.02);
   c.residual_limit_rad = static_cast<Scalar>(1.7e-3);
-  c.residual_persistence_ticks = 20;
-  c.invalid_persistence_ticks = 10;
-  c.spin_low_persistence_ticks = 50;
-  c.torquer_fail_persistence_ticks = 5;
   c.uncage_settle_ticks = 100;
   return c;
 }
@@ -89,24 +70,6 @@ gyro::GyroComponentConfig<Scalar> seeker_config() noexcept {
 RegisterPort g_port;
 gyro::GyroComponent<Scalar> g_component(g_port);
 gyro::GuidanceInput<Scalar> g_input;
-
-std::uintptr_t stack_pointer() noexcept {
-  std::uintptr_t sp;
-  __asm__ volatile("mov %0, sp" : "=r"(sp));
-  return sp;
-}
-
-__attribute__((noinline)) void paint_stack() noexcept {
-  volatile std::uint32_t* p = __stack_limit;
-  const std::uintptr_t end = stack_pointer();
-  while (reinterpret_cast<std::uintptr_t>(p) < end) *p++ = kPaint;
-}
-
-__attribute__((noinline)) std::uintptr_t stack_low_water() noexcept {
-  const volatile std::uint32_t* p = __stack_limit;
-  while (*p == kPaint) ++p;
-  return reinterpret_cast<std::uintptr_t>(p);
-}
 
 }  // namespace
 
@@ -129,15 +92,11 @@ extern "C" __attribute__((noinline)) int gyro_fw_component_init() noexcept {
 int main() {
   int failures = 0;
   g_input.nav_valid = true;
-  paint_stack();
-  const std::uintptr_t sp_init = stack_pointer();
-  failures += gyro_fw_component_init() != 0 ? 1 : 0;
-  const std::uintptr_t init_stack = sp_init - stack_low_water();
-
-  paint_stack();
-  const std::uintptr_t sp_tick = stack_pointer();
-  for (std::uint32_t k = 1; k <= kTicks; ++k) failures += gyro_fw_component_tick(k) != 0 ? 1 : 0;
-  const std::uintptr_t tick_stack = sp_tick - stack_low_water();
+  const std::uintptr_t init_stack =
+      gyro_fw::stack_used_by([&] { failures += gyro_fw_component_init() != 0 ? 1 : 0; });
+  const std::uintptr_t tick_stack = gyro_fw::stack_used_by([&] {
+    for (std::uint32_t k = 1; k <= kTicks; ++k) failures += gyro_fw_component_tick(k) != 0 ? 1 : 0;
+  });
 
   const gyro::GyroTelemetry<Scalar>& tm = g_component.telemetry();
   const bool nominal = tm.mode == gyro::GyroMode::kFree && tm.flags == 0U;

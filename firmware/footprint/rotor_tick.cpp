@@ -4,9 +4,7 @@
 // changes), then every tick advances the rotor one step under the commanded torque
 // (advance). The scalar is float on a single-precision FPU (Cortex-M4F), else double.
 //
-// Stack is measured by painting: the free stack below the caller is filled with a
-// pattern, the code runs, and the lowest word no longer holding the pattern marks the
-// deepest use. The image prints
+// Stack is measured by painting (stack_paint.hpp). The image prints
 //   stack make_transition <bytes>
 //   stack tick <bytes>
 // and exits 0 when every call returned kOk.
@@ -14,6 +12,7 @@
 
 #include "fw_io.hpp"
 #include "gyro/rotor_transition.hpp"
+#include "stack_paint.hpp"
 
 #if defined(__ARM_FP) && !(__ARM_FP & 0x8)
 using Scalar = float;
@@ -21,11 +20,8 @@ using Scalar = float;
 using Scalar = double;
 #endif
 
-extern "C" std::uint32_t __stack_limit[];  // mps2.ld: the lowest address of the stack
-
 namespace {
 
-constexpr std::uint32_t kPaint = 0xA5A5A5A5U;
 constexpr int kTicks = 1000;
 
 // Inputs and outputs through volatile objects: nothing is folded at compile time.
@@ -37,27 +33,6 @@ gyro::RotorParameters<Scalar> g_params{static_cast<Scalar>(2.25), static_cast<Sc
                                        static_cast<Scalar>(5.0), static_cast<Scalar>(1884.9556)};
 gyro::RotorTransition<Scalar> g_transition;
 gyro::RotorState<Scalar> g_state;
-
-std::uintptr_t stack_pointer() noexcept {
-  std::uintptr_t sp;
-  __asm__ volatile("mov %0, sp" : "=r"(sp));
-  return sp;
-}
-
-// Fills the free stack from __stack_limit up to this function's stack pointer: everything
-// below the caller's frame (no interrupts run, and Arm has no red zone below sp).
-__attribute__((noinline)) void paint_stack() noexcept {
-  volatile std::uint32_t* p = __stack_limit;
-  const std::uintptr_t end = stack_pointer();
-  while (reinterpret_cast<std::uintptr_t>(p) < end) *p++ = kPaint;
-}
-
-// The lowest address written since paint_stack().
-__attribute__((noinline)) std::uintptr_t stack_low_water() noexcept {
-  const volatile std::uint32_t* p = __stack_limit;
-  while (*p == kPaint) ++p;
-  return reinterpret_cast<std::uintptr_t>(p);
-}
 
 }  // namespace
 
@@ -74,15 +49,11 @@ extern "C" __attribute__((noinline)) int gyro_fw_rotor_init() noexcept {
 
 int main() {
   int failures = 0;
-  paint_stack();
-  const std::uintptr_t sp_init = stack_pointer();
-  failures += gyro_fw_rotor_init() != 0 ? 1 : 0;
-  const std::uintptr_t init_stack = sp_init - stack_low_water();
-
-  paint_stack();
-  const std::uintptr_t sp_tick = stack_pointer();
-  for (int k = 0; k < kTicks; ++k) failures += gyro_fw_rotor_tick() != 0 ? 1 : 0;
-  const std::uintptr_t tick_stack = sp_tick - stack_low_water();
+  const std::uintptr_t init_stack =
+      gyro_fw::stack_used_by([&] { failures += gyro_fw_rotor_init() != 0 ? 1 : 0; });
+  const std::uintptr_t tick_stack = gyro_fw::stack_used_by([&] {
+    for (int k = 0; k < kTicks; ++k) failures += gyro_fw_rotor_tick() != 0 ? 1 : 0;
+  });
   g_sink = g_state.angle_rad(0);
 
   gyro_fw::Line() << "stack make_transition " << static_cast<unsigned long>(init_stack) << '\n';

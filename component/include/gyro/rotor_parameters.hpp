@@ -54,7 +54,8 @@ template <typename T, int R, int C>
 }
 template <typename A, typename B, typename... Rest>
 [[nodiscard]] bool all_finite(const A& a, const B& b, const Rest&... rest) noexcept {
-  return all_finite(a) & all_finite(b, rest...);  // & not &&: no branch per argument
+  // & not &&: no branch per argument (on unsigned: clang's -Wbitwise-instead-of-logical).
+  return (static_cast<unsigned>(all_finite(a)) & static_cast<unsigned>(all_finite(b, rest...))) != 0U;
 }
 
 template <typename T>

@@ -239,6 +239,20 @@ TYPED_TEST(GyroBadInput, GivenFiniteTorqueThatOverflowsThroughCrossCouplingThenN
   EXPECT_EQ(g.step_torque(in, Vector2<T>(T(10), T(-20))), Status::kOk);
 }
 
+// Without spin a finite torque accelerates the gimbals freely (w' = T/J): over 100 s the
+// largest torque overflows the rates inside the exact step.
+TYPED_TEST(GyroBadInput, GivenNoSpinAndLargestTorqueOver100sThenNumericalOverflowAndStateBitIdentical) {
+  using T = TypeParam;
+  GyroModel<T> g = uncaged_model<T>(test_config<T>(), Vector2<T>(T(0.2), T(-0.1)), Vector2<T>(T(0.01), T(0.02)),
+                                    some_body_attitude<T>());
+  const GyroStepInput<T> in = step_input<T>(T(100), T(0), some_body_attitude<T>());
+  const T big = std::numeric_limits<T>::max();
+  const Observed<T> before = observe(g);
+  EXPECT_EQ(g.step_torque(in, Vector2<T>(big, -big)), Status::kNumericalOverflow);
+  EXPECT_TRUE(bit_identical(before, observe(g)));
+  EXPECT_EQ(g.step_torque(in, Vector2<T>(T(1e-3), T(-2e-3))), Status::kOk);
+}
+
 TYPED_TEST(GyroBadInput, GivenBadUncageInputThenRefusedAndStateBitIdentical) {
   using T = TypeParam;
   const T nan = std::numeric_limits<T>::quiet_NaN();

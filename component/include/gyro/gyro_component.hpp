@@ -277,7 +277,9 @@ class GyroComponent {
     }
     const T largest = torque.cwiseAbs().maxCoeff();
     if (largest > config_.max_torque) {
-      torque *= config_.max_torque / largest;
+      // Divide first: the largest component becomes exactly 1, so the result never exceeds
+      // max_torque (max_torque / largest can be subnormal and lose the digits that keep it).
+      torque = (torque / largest) * config_.max_torque;
       flags |= kTorquerSaturated;
     }
     return torque;

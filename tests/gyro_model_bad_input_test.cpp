@@ -1,20 +1,6 @@
 // GyroModel refuses bad configuration and bad step inputs with a status and leaves its state
 // bit-identical; identical inputs give bit-identical outputs.
-#include <gtest/gtest.h>
-
-#include <array>
-#include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <cstring>
-#include <functional>
-#include <limits>
-#include <string>
-#include <type_traits>
-#include <vector>
-
-#include "gyro/gyro_model.hpp"
-#include "support/gyro_model_support.hpp"
+#include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
 
 namespace gyro {
 namespace {

@@ -1,22 +1,8 @@
 // GyroModel's error sources, gimbal limits and small-angle flag, each against the behaviour
 // it must produce (drift rates, exponential erection, cones, flag thresholds), worked out
 // here rather than from the model's formulas.
-#include <gtest/gtest.h>
-
-#include <array>
-#include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <cstring>
-#include <functional>
-#include <limits>
-#include <string>
-#include <type_traits>
-#include <vector>
-
-#include "gyro/gyro_model.hpp"
 #include "gyro/report_sample.hpp"
-#include "support/gyro_model_support.hpp"
+#include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
 
 namespace gyro {
 namespace {

@@ -7,21 +7,7 @@
 //   - a rotation about a fixed axis moves the spin axis along a cone (Rodrigues' formula);
 //   - with J1 = J2 and no torque or friction the rate vector keeps its length and turns at
 //     H/J (whatever H(t) does), and without spin the axes decouple into exponentials.
-#include <gtest/gtest.h>
-
-#include <array>
-#include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <cstring>
-#include <functional>
-#include <limits>
-#include <string>
-#include <type_traits>
-#include <vector>
-
-#include "gyro/gyro_model.hpp"
-#include "support/gyro_model_support.hpp"
+#include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
 
 namespace gyro {
 namespace {

@@ -46,23 +46,21 @@ template <typename T>
   struct Positive {
     T value;
     const char* name;
+    Status if_not_positive;
   };
   const Positive positive[] = {
-      {c.pitch_inertia, "pitch_inertia"},
-      {c.yaw_inertia, "yaw_inertia"},
-      {c.spin_inertia, "spin_inertia"},
-      {c.gimbal_cone_limit_rad, "gimbal_cone_limit_rad"},
-      {c.max_pitch_rate_rad_s, "max_pitch_rate_rad_s"},
-      {c.max_yaw_rate_rad_s, "max_yaw_rate_rad_s"},
-      {c.small_angle_limit_rad, "small_angle_limit_rad"},
-      {c.gravity, "gravity"},
+      {c.pitch_inertia, "pitch_inertia", Status::kNonPositiveInertia},
+      {c.yaw_inertia, "yaw_inertia", Status::kNonPositiveInertia},
+      {c.spin_inertia, "spin_inertia", Status::kNonPositiveInertia},
+      {c.gimbal_cone_limit_rad, "gimbal_cone_limit_rad", Status::kOutOfRange},
+      {c.max_pitch_rate_rad_s, "max_pitch_rate_rad_s", Status::kOutOfRange},
+      {c.max_yaw_rate_rad_s, "max_yaw_rate_rad_s", Status::kOutOfRange},
+      {c.small_angle_limit_rad, "small_angle_limit_rad", Status::kOutOfRange},
+      {c.gravity, "gravity", Status::kOutOfRange},
   };
   for (const Positive& p : positive) {
     if (!std::isfinite(p.value)) return {Status::kNonFiniteInput, p.name};
-    if (!(p.value > T(0))) {
-      const bool inertia = (&p - positive) < 3;
-      return {inertia ? Status::kNonPositiveInertia : Status::kOutOfRange, p.name};
-    }
+    if (!(p.value > T(0))) return {p.if_not_positive, p.name};
   }
   if (!std::isfinite(c.friction)) return {Status::kNonFiniteInput, "friction"};
   if (c.friction < T(0)) return {Status::kNegativeFriction, "friction"};

@@ -17,12 +17,9 @@
 #include "gyro/gyro_port.hpp"
 #include "gyro/seeker_example.hpp"  // the example gyro's constants only: no stub code is used
 #include "stack_paint.hpp"
+#include "target_scalar.hpp"
 
-#if defined(__ARM_FP) && !(__ARM_FP & 0x8)
-using Scalar = float;
-#else
-using Scalar = double;
-#endif
+using Scalar = gyro_fw::TargetScalar;
 
 namespace {
 

@@ -13,12 +13,9 @@
 #include "fw_io.hpp"
 #include "gyro/rotor_transition.hpp"
 #include "stack_paint.hpp"
+#include "target_scalar.hpp"
 
-#if defined(__ARM_FP) && !(__ARM_FP & 0x8)
-using Scalar = float;
-#else
-using Scalar = double;
-#endif
+using Scalar = gyro_fw::TargetScalar;
 
 namespace {
 

@@ -388,6 +388,11 @@ void parse_component(const Reader& r, const RunSpec& run, GyroComponentConfig<do
   c.spin_low_persistence_ticks = r.count32("spin_low_persistence_ticks");
   c.torquer_fail_persistence_ticks = r.count32("torquer_fail_persistence_ticks");
   c.uncage_settle_ticks = r.count32("uncage_settle_ticks");
+  const GyroComponentConfig<double> defaults;
+  c.max_tick_gap = r.has("max_tick_gap") ? r.count32("max_tick_gap") : defaults.max_tick_gap;
+  c.input_persistence_ticks =
+      r.has("input_persistence_ticks") ? r.count32("input_persistence_ticks") : defaults.input_persistence_ticks;
+  c.max_body_rate_rad_s = r.number("max_body_rate_rad_s", defaults.max_body_rate_rad_s);
 }
 
 BodyProfile parse_body(const Reader& r) {
@@ -522,7 +527,8 @@ Scenario parse_scenario(std::string_view json_text, const std::string& file) {
                               "max_pickoff_step_rad", "estimator_gain", "residual_limit_rad",
                               "residual_persistence_ticks", "invalid_persistence_ticks",
                               "spin_low_persistence_ticks", "torquer_fail_persistence_ticks",
-                              "uncage_settle_ticks"}),
+                              "uncage_settle_ticks", "max_tick_gap", "input_persistence_ticks",
+                              "max_body_rate_rad_s"}),
                   s.run, s.component);
   s.body = parse_body(top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel"}));
   s.guidance = parse_guidance(top.object("guidance", {"schedule"}), s.run, s.file);

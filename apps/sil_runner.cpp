@@ -30,11 +30,6 @@ static_assert([] {
   return true;
 }());
 
-constexpr std::array<std::string_view, kComponentFlagCount> kFlagNames = {
-    "gimbal_limit",      "small_angle_exceeded", "nutation_unresolved", "pickoff_invalid",
-    "pickoff_stale",     "pickoff_jump",         "residual_fault",      "torquer_saturated",
-    "spin_low",          "torquer_write_failed", "nav_invalid",         "command_rejected",
-    "tick_skipped",      "gimbal_stop_protect",  "fault_latched"};
 
 template <typename T>
 Vector2<T> v2(const Eigen::Vector2d& v) {
@@ -125,6 +120,9 @@ GyroComponentConfig<T> cast_config(const GyroComponentConfig<double>& d) {
   g.spin_low_persistence_ticks = d.spin_low_persistence_ticks;
   g.torquer_fail_persistence_ticks = d.torquer_fail_persistence_ticks;
   g.uncage_settle_ticks = d.uncage_settle_ticks;
+  g.max_tick_gap = d.max_tick_gap;
+  g.input_persistence_ticks = d.input_persistence_ticks;
+  g.max_body_rate_rad_s = c(d.max_body_rate_rad_s);
   return g;
 }
 
@@ -241,7 +239,7 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     in.slew_rate_cmd_rad_s = v2<T>(guidance.slew());
     in.nav_valid = guidance.nav_valid();
     in.R_earth_to_body = body.R_earth_to_body().cast<T>();
-    in.body_rate_rad_s = v2<T>(body.rate_rad_s());
+    in.body_rate_rad_s = Vector3<T>(T(0), static_cast<T>(body.rate_rad_s()(0)), static_cast<T>(body.rate_rad_s()(1)));
     const Status step = comp.step(k, in);
     if (step != Status::kOk) ++sum.refused_steps;
 
@@ -290,8 +288,8 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     num(stub.spin_hz());
     num(stub.applied_torque()(0));
     num(stub.applied_torque()(1));
-    num(in.body_rate_rad_s(0));
     num(in.body_rate_rad_s(1));
+    num(in.body_rate_rad_s(2));
     csv.integer(truth.flags() | (stub.at_gimbal_stop() ? 4u : 0u));
     csv.integer(stub.active_faults());
     csv.integer(static_cast<std::uint64_t>(step));
@@ -345,10 +343,10 @@ RunSummary run_scenario(const Scenario& s, CsvWriter& csv, const RunOptions& opt
 
 std::string flag_names(std::uint32_t flags) {
   std::string out;
-  for (std::size_t i = 0; i < kFlagNames.size(); ++i) {
-    if ((flags & (1u << i)) == 0u) continue;
+  for (int i = 0; i < kComponentFlagCount; ++i) {
+    if ((flags & (1u << static_cast<unsigned>(i))) == 0u) continue;
     if (!out.empty()) out += '|';
-    out += kFlagNames[i];
+    out += flag_name(i);
   }
   return out;
 }

@@ -14,19 +14,21 @@
 // Invariants, after every call:
 //   - telemetry's floating fields are all finite, its attitude quaternion a unit one;
 //   - counters never decrease: each grows by one exactly when its flag is raised (saturating);
+//   - before activate(), step() is refused with kNotActive counted, no port traffic;
+//   - once active, no input stops a tick (docs/component.md, "Corrupt input"): every call
+//     reads the pickoffs once and writes the torquer once, and returns kOk, or kInputIgnored
+//     exactly when a field was unusable (a non-finite slew command, an unknown request,
+//     navigation marked valid but unusable, a tick count that repeats, goes back, jumps
+//     beyond max_tick_gap or follows an untrusted count), with the matching flags;
 //   - the mode changes only as docs/component.md allows (idle->caged only by activate();
-//     caged->uncaging on an uncage request with an accepted reading and valid navigation;
+//     caged->uncaging on an uncage request with an accepted reading and usable navigation;
 //     uncaging->free after uncage_settle_ticks ticks; uncaging/free->caged on a cage request;
-//     any active mode->fault; fault->caged on a cage request; nothing else);
-//   - a refused tick (status != kOk) touches neither the port nor anything but telemetry's
-//     flags (the refusal's bit only) and counters; an input that is finite, with a known
-//     request and an advancing tick, is never refused;
-//   - a twin component that is handed only the accepted ticks, with identical port answers,
-//     publishes bit-identical telemetry (counters aside) and writes bit-identical torques:
-//     refusals leave no hidden trace and the component is deterministic;
-//   - an accepted tick reads the pickoffs once and writes the torquer once, with a finite
-//     torque within max_torque, zero when uncaging or in fault; kFaultLatched is raised
-//     exactly in fault;
+//     any active mode->fault; fault->caged on a cage request; nothing else; an unknown
+//     request is no request);
+//   - the torque written is finite and within max_torque, zero when uncaging or in fault;
+//     kFaultLatched is raised exactly in fault;
+//   - a twin component handed the same calls and port answers publishes bit-identical
+//     telemetry and writes bit-identical torques (deterministic, nothing uninitialised);
 //   - configure() and activate() are refused once active and change nothing.
 #include <array>
 #include <cstdint>
@@ -300,6 +302,7 @@ struct Script {
     if (n & 8u) {
       guidance.body_rate_rad_s(0) = in.value<T>(T(1));
       guidance.body_rate_rad_s(1) = in.value<T>(T(1));
+      guidance.body_rate_rad_s(2) = in.value<T>(T(1));
     }
   }
 };
@@ -342,12 +345,15 @@ void run(Bytes& in, std::uint8_t head) {
   cfg.use_spin_readback = (head & 16u) == 0u;
   Script<T> script;
 
-  if (head & 4u) {  // steps before activation: refused, nothing changes
+  if (head & 4u) {  // steps before activation: refused and counted, nothing else changes
     const gyro::GyroTelemetry<T> before = c.telemetry();
     GYRO_FUZZ_CHECK(c.step(1, script.guidance) == Status::kNotConfigured);
-    GYRO_FUZZ_CHECK(same_telemetry(before, c.telemetry()) && c.mode() == GyroMode::kIdle);
+    GYRO_FUZZ_CHECK(c.telemetry().flags == gyro::kNotActive);
+    GYRO_FUZZ_CHECK(counters_follow(before.counters, c.telemetry().counters, gyro::kNotActive));
+    GYRO_FUZZ_CHECK(same_except_flags_counters(before, c.telemetry()) && c.mode() == GyroMode::kIdle);
     GYRO_FUZZ_CHECK(c.activate() == Status::kNotConfigured && c.mode() == GyroMode::kIdle);
     GYRO_FUZZ_CHECK(port.reads == 0 && port.writes == 0);
+    GYRO_FUZZ_CHECK(twin.step(1, script.guidance) == Status::kNotConfigured);  // counted alike
   }
   if (head & 2u) {
     gyro::GyroComponentConfig<T> odd = cfg;
@@ -369,7 +375,8 @@ void run(Bytes& in, std::uint8_t head) {
   GYRO_FUZZ_CHECK(c.telemetry().mode == GyroMode::kCaged);
   check_telemetry(c);
 
-  bool have_tick = false;
+  // The tick-count rule of docs/component.md, mirrored.
+  bool have_tick = false, trusted = false;
   std::uint64_t last_tick = 0;
   std::uint32_t uncaging_ticks = 0;
   gyro::Vector2<T> held = gyro::Vector2<T>::Zero();
@@ -386,53 +393,53 @@ void run(Bytes& in, std::uint8_t head) {
     const gyro::GyroTelemetry<T>& after = c.telemetry();
     check_telemetry(c);
 
-    const bool input_ok = gyro::all_finite(g.slew_rate_cmd_rad_s, g.body_rate_rad_s) && known_request(g.request);
-    const bool tick_ok = !have_tick || script.tick > last_tick;
-    if (st != Status::kOk) {
-      GYRO_FUZZ_CHECK(!(input_ok && tick_ok));
-      const std::uint32_t refusal = input_ok ? std::uint32_t{gyro::kTickSkipped} : std::uint32_t{gyro::kCommandRejected};
-      GYRO_FUZZ_CHECK(st == (input_ok ? Status::kOutOfRange : Status::kNonFiniteInput));
-      GYRO_FUZZ_CHECK(after.flags == refusal);
-      GYRO_FUZZ_CHECK(counters_follow(before.counters, after.counters, refusal));
-      GYRO_FUZZ_CHECK(same_except_flags_counters(before, after));
-      GYRO_FUZZ_CHECK(c.mode() == from);
-      GYRO_FUZZ_CHECK(port.reads == reads && port.writes == writes);
-    } else {
-      GYRO_FUZZ_CHECK(input_ok && tick_ok);
-      have_tick = true;
-      last_tick = script.tick;
-      GYRO_FUZZ_CHECK(port.reads == reads + 1 && port.writes == writes + 1);
-      GYRO_FUZZ_CHECK(after.tick == script.tick);
-      GYRO_FUZZ_CHECK(counters_follow(before.counters, after.counters, after.flags));
-
-      const GyroMode to = c.mode();
-#if defined(GYRO_FUZZ_TRACE)
-      std::fprintf(stderr, "tick %llu %s -> %s flags %#x torque %g %g\n",
-                   static_cast<unsigned long long>(script.tick), gyro::to_string(from), gyro::to_string(to),
-                   after.flags, static_cast<double>(port.torque(0)), static_cast<double>(port.torque(1)));
-#endif
-      if (from == GyroMode::kUncaging) ++uncaging_ticks;
-      const bool settled = from == GyroMode::kUncaging && uncaging_ticks >= cfg.uncage_settle_ticks;
-      GYRO_FUZZ_CHECK(legal_transition(from, to, g.request, after.flags, settled));
-      if (from == GyroMode::kUncaging && settled && g.request != ModeRequest::kCage) {
-        GYRO_FUZZ_CHECK(to == GyroMode::kFree || to == GyroMode::kFault);
-      }
-      if (to != GyroMode::kUncaging) uncaging_ticks = 0;
-      GYRO_FUZZ_CHECK(((after.flags & gyro::kFaultLatched) != 0u) == (to == GyroMode::kFault));
-
-      const gyro::Vector2<T>& w = port.torque;
-      GYRO_FUZZ_CHECK(finite_coeffs(w));
-      GYRO_FUZZ_CHECK(w.cwiseAbs().maxCoeff() <= cfg.max_torque * (T(1) + T(4) * std::numeric_limits<T>::epsilon()));
-      if (to == GyroMode::kUncaging || to == GyroMode::kFault) GYRO_FUZZ_CHECK(w.isZero(T(0)));
-      if (script.port.write_status == PortStatus::kOk) held = w;
-      GYRO_FUZZ_CHECK(same_bits(after.torque_cmd, held));
-
-      // The twin sees only the accepted ticks: the same telemetry, the same torque.
-      GYRO_FUZZ_CHECK(twin.step(script.tick, g) == Status::kOk);
-      GYRO_FUZZ_CHECK(same_except_flags_counters(after, twin.telemetry()));
-      GYRO_FUZZ_CHECK(after.flags == twin.telemetry().flags);
-      GYRO_FUZZ_CHECK(same_bits(port.torque, twin_port.torque));
+    bool tick_bad = false;
+    if (have_tick && script.tick != last_tick + 1u) {
+      tick_bad = !(trusted && script.tick > last_tick && script.tick - last_tick <= cfg.max_tick_gap);
     }
+    have_tick = true;
+    trusted = !tick_bad;
+    last_tick = script.tick;
+    const bool nav_usable = g.nav_valid && gyro::all_finite(g.body_rate_rad_s) &&
+                            g.body_rate_rad_s.cwiseAbs().maxCoeff() <= cfg.max_body_rate_rad_s &&
+                            gyro::is_rotation(g.R_earth_to_body);
+    const bool command_bad = !gyro::all_finite(g.slew_rate_cmd_rad_s) || !known_request(g.request) ||
+                             (g.nav_valid && !nav_usable);
+    GYRO_FUZZ_CHECK(st == ((command_bad || tick_bad) ? Status::kInputIgnored : Status::kOk));
+    GYRO_FUZZ_CHECK(((after.flags & gyro::kTickInvalid) != 0u) == tick_bad);
+    GYRO_FUZZ_CHECK(((after.flags & gyro::kCommandRejected) != 0u) == command_bad);
+    GYRO_FUZZ_CHECK(((after.flags & gyro::kNavInvalid) != 0u) == !nav_usable);
+    GYRO_FUZZ_CHECK(port.reads == reads + 1 && port.writes == writes + 1);
+    GYRO_FUZZ_CHECK(after.tick == script.tick);
+    GYRO_FUZZ_CHECK(counters_follow(before.counters, after.counters, after.flags));
+
+    const GyroMode to = c.mode();
+#if defined(GYRO_FUZZ_TRACE)
+    std::fprintf(stderr, "tick %llu %s -> %s flags %#x torque %g %g\n", static_cast<unsigned long long>(script.tick),
+                 gyro::to_string(from), gyro::to_string(to), after.flags, static_cast<double>(port.torque(0)),
+                 static_cast<double>(port.torque(1)));
+#endif
+    const ModeRequest request = known_request(g.request) ? g.request : ModeRequest::kNone;
+    if (from == GyroMode::kUncaging) ++uncaging_ticks;
+    const bool settled = from == GyroMode::kUncaging && uncaging_ticks >= cfg.uncage_settle_ticks;
+    GYRO_FUZZ_CHECK(legal_transition(from, to, request, after.flags, settled));
+    if (from == GyroMode::kUncaging && settled && request != ModeRequest::kCage) {
+      GYRO_FUZZ_CHECK(to == GyroMode::kFree || to == GyroMode::kFault);
+    }
+    if (to != GyroMode::kUncaging) uncaging_ticks = 0;
+    GYRO_FUZZ_CHECK(((after.flags & gyro::kFaultLatched) != 0u) == (to == GyroMode::kFault));
+
+    const gyro::Vector2<T>& w = port.torque;
+    GYRO_FUZZ_CHECK(finite_coeffs(w));
+    GYRO_FUZZ_CHECK(w.cwiseAbs().maxCoeff() <= cfg.max_torque * (T(1) + T(4) * std::numeric_limits<T>::epsilon()));
+    if (to == GyroMode::kUncaging || to == GyroMode::kFault) GYRO_FUZZ_CHECK(w.isZero(T(0)));
+    if (script.port.write_status == PortStatus::kOk) held = w;
+    GYRO_FUZZ_CHECK(same_bits(after.torque_cmd, held));
+
+    // The twin, handed the same calls: the same telemetry, the same torque.
+    GYRO_FUZZ_CHECK(twin.step(script.tick, g) == st);
+    GYRO_FUZZ_CHECK(same_telemetry(after, twin.telemetry()));
+    GYRO_FUZZ_CHECK(same_bits(port.torque, twin_port.torque));
 
     if (script.poke_active) {  // refused once active, nothing changes
       const gyro::GyroTelemetry<T> t0 = c.telemetry();

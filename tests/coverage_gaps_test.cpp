@@ -182,7 +182,7 @@ struct FaultyRig {
     if (adv != Status::kOk) return adv;
     guidance.nav_valid = true;
     guidance.R_earth_to_body = R_earth_to_body;
-    guidance.body_rate_rad_s = body_rate;
+    guidance.body_rate_rad_s = Vector3<T>(T(0), body_rate(0), body_rate(1));
     return component.step(tick, guidance);
   }
   [[nodiscard]] const GyroTelemetry<T>& tm() const { return component.telemetry(); }
@@ -217,7 +217,9 @@ TEST(ComponentTorquer, GivenTorquerWritesFailingWhenSteppedThenFlaggedCountedLas
   EXPECT_TRUE(telemetry_finite(rig.tm()));
 }
 
-TEST(ComponentTorquer, GivenFailuresShorterThanPersistenceWhenAWriteSucceedsBetweenThenNoFault) {
+TEST(ComponentTorquer, GivenFailedWritesFewerThanOneInThreeThenCountedButNoFault) {
+  // Bursts of persistence - 1 failures, each followed by twice as many good writes: the
+  // persistence monitor drains between the bursts and never trips.
   FaultyRig<double> rig;
   ASSERT_TRUE(rig.start());
   const std::uint32_t persistence = SeekerGyro<double>::component().torquer_fail_persistence_ticks;
@@ -225,12 +227,29 @@ TEST(ComponentTorquer, GivenFailuresShorterThanPersistenceWhenAWriteSucceedsBetw
     rig.harness.write_status = PortStatus::kTimeout;
     for (std::uint32_t n = 0; n + 1 < persistence; ++n) ASSERT_EQ(rig.step(), Status::kOk);
     rig.harness.write_status = PortStatus::kOk;
-    ASSERT_EQ(rig.step(), Status::kOk);
-    EXPECT_EQ(rig.tm().flags & kTorquerWriteFailed, 0U);
+    for (std::uint32_t n = 0; n < 2 * (persistence - 1); ++n) {
+      ASSERT_EQ(rig.step(), Status::kOk);
+      EXPECT_EQ(rig.tm().flags & kTorquerWriteFailed, 0U);
+    }
     EXPECT_EQ(rig.tm().torque_cmd, rig.gyro.torque_command()) << "the successful write is held";
   }
   EXPECT_EQ(rig.component.mode(), GyroMode::kCaged);
   EXPECT_EQ(rig.tm().counters[kWriteFailedBit], 4U * (persistence - 1U));
+}
+
+TEST(ComponentTorquer, GivenWritesFailingFourTimesInFiveThenTheFaultLatches) {
+  // The same bursts with a single good write between them: an intermittent torquer cannot
+  // dodge the persistence by succeeding now and then.
+  FaultyRig<double> rig;
+  ASSERT_TRUE(rig.start());
+  const std::uint32_t persistence = SeekerGyro<double>::component().torquer_fail_persistence_ticks;
+  for (int burst = 0; burst < 4 && rig.component.mode() != GyroMode::kFault; ++burst) {
+    rig.harness.write_status = PortStatus::kTimeout;
+    for (std::uint32_t n = 0; n + 1 < persistence; ++n) ASSERT_EQ(rig.step(), Status::kOk);
+    rig.harness.write_status = PortStatus::kOk;
+    ASSERT_EQ(rig.step(), Status::kOk);
+  }
+  EXPECT_EQ(rig.component.mode(), GyroMode::kFault);
 }
 
 // A spin readback so large that the exact transition over a tick overflows the scalar type

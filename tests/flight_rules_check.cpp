@@ -7,6 +7,7 @@
 #include "gyro/component_types.hpp"
 #include "gyro/error_sources.hpp"
 #include "gyro/nutation.hpp"
+#include "gyro/persistence.hpp"
 #include "gyro/rotor_parameters.hpp"
 #include "gyro/rotor_transition.hpp"
 #include "gyro/scalar_traits.hpp"

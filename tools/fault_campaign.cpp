@@ -115,7 +115,7 @@ RunResult run_one(const Dispersed& d, std::uint64_t fault_start) {
     body.advance();
     if (stub.advance(k, body.R_earth_to_body(), body.accel()) != gyro::Status::kOk) std::exit(3);
     in.R_earth_to_body = body.R_earth_to_body();
-    in.body_rate_rad_s = body.rate_rad_s();
+    in.body_rate_rad_s = Eigen::Vector3d(0.0, body.rate_rad_s()(0), body.rate_rad_s()(1));
     in.request = (k == d.uncage_tick) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
     if (k % kCommandPeriod == 0) {
       // Slew around the body's own motion so the gimbals stay inside their cone.

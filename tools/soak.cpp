@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     in.R_earth_to_body = body.R_earth_to_body();
-    in.body_rate_rad_s = body.rate_rad_s();
+    in.body_rate_rad_s = Eigen::Vector3d(0.0, body.rate_rad_s()(0), body.rate_rad_s()(1));
     in.request = (k == 100) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
     // Track the body, closing the gimbal angles slowly: the seeker holds its line of sight.
     in.slew_rate_cmd_rad_s = body.rate_rad_s() - 2.0 * comp.telemetry().gimbal_measured_rad;

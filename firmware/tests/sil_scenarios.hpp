@@ -79,7 +79,7 @@ template <typename T, typename Sink>
   const gyro::Matrix3<T> turn = gyro::frame_rotation_z(body_rate(1) * dt) * gyro::frame_rotation_y(body_rate(0) * dt);
   gyro::GuidanceInput<T> in;
   in.nav_valid = true;
-  in.body_rate_rad_s = body_rate;
+  in.body_rate_rad_s = gyro::Vector3<T>(T(0), body_rate(0), body_rate(1));
   for (int k = 1; k <= s.ticks; ++k) {
     r_eb = turn * r_eb;
     st = stub.advance(static_cast<std::uint64_t>(k), r_eb, gyro::Vector2<T>::Zero());

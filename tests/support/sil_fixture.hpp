@@ -42,7 +42,7 @@ class Sil {
     guidance.request = request;
     guidance.nav_valid = true;
     guidance.R_earth_to_body = R_earth_to_body;
-    guidance.body_rate_rad_s = body_rate;
+    guidance.body_rate_rad_s = Vector3<T>(T(0), body_rate(0), body_rate(1));
     last = component.step(tick, guidance);
     return last;
   }

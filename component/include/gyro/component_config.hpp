@@ -39,6 +39,7 @@ template <typename T>
       {c.max_pickoff_step_rad, "max_pickoff_step_rad", false, kRange},
       {c.estimator_gain, "estimator_gain", true, kRange},
       {c.residual_limit_rad, "residual_limit_rad", false, kRange},
+      {c.max_body_rate_rad_s, "max_body_rate_rad_s", false, kRange},
   };
   for (const Field& f : fields) {
     if (!std::isfinite(f.value)) return {Status::kNonFiniteInput, f.name};
@@ -59,6 +60,8 @@ template <typename T>
       {c.invalid_persistence_ticks, "invalid_persistence_ticks"},
       {c.spin_low_persistence_ticks, "spin_low_persistence_ticks"},
       {c.torquer_fail_persistence_ticks, "torquer_fail_persistence_ticks"},
+      {c.input_persistence_ticks, "input_persistence_ticks"},
+      {c.max_tick_gap, "max_tick_gap"},
   };
   const Count* const zero = std::find_if(std::begin(counts), std::end(counts),
                                          [](const Count& n) noexcept { return n.value == 0u; });

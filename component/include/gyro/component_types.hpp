@@ -33,7 +33,8 @@ enum class GyroMode : std::uint8_t { kIdle = 0, kCaged, kUncaging, kFree, kFault
 enum class ModeRequest : std::uint8_t { kNone = 0, kCage, kUncage };
 
 // Flag bits, raised for the tick in which the condition holds (telemetry.flags) and counted
-// (telemetry.counters, index = bit number).
+// (telemetry.counters, index = bit number). The inputs a tick ignored are flagged here too:
+// the tick still ran (docs/component.md, "Corrupt input").
 enum ComponentFlag : std::uint32_t {
   kGimbalLimit = 1u << 0,        // estimated spin axis outside the gimbal cone / axis limits
   kSmallAngleExceeded = 1u << 1, // a tick's angles or nutation amplitude beyond the limit
@@ -45,13 +46,27 @@ enum ComponentFlag : std::uint32_t {
   kTorquerSaturated = 1u << 7,   // the torque law asked more than the torquer gives
   kSpinLow = 1u << 8,            // spin below its minimum (readback or configured)
   kTorquerWriteFailed = 1u << 9, // the port refused the torquer command
-  kNavInvalid = 1u << 10,        // body attitude missing, non-finite or not a rotation
-  kCommandRejected = 1u << 11,   // guidance input non-finite: the tick was refused
-  kTickSkipped = 1u << 12,       // tick count did not advance by exactly one
+  kNavInvalid = 1u << 10,        // navigation marked invalid, or its attitude/rates unusable
+  kCommandRejected = 1u << 11,   // a guidance command field unusable: ignored (slew held)
+  kTickSkipped = 1u << 12,       // tick count jumped by 2..max_tick_gap: the gap was bridged
   kGimbalStopProtect = 1u << 13, // a slew command toward a gimbal stop was withheld
   kFaultLatched = 1u << 14,      // in safe mode
+  kTickInvalid = 1u << 15,       // tick count repeated, went back or jumped too far: one tick
+  kNotActive = 1u << 16,         // step() before activate(): refused (nothing else changes)
+  kInputFault = 1u << 17,        // unusable guidance input (commands, tick) for long enough
 };
-inline constexpr int kComponentFlagCount = 15;
+inline constexpr int kComponentFlagCount = 18;
+
+// The name of a flag bit as logs and CSV files spell it ("pickoff_invalid"); "" if none.
+[[nodiscard]] constexpr const char* flag_name(int bit) noexcept {
+  constexpr const char* kNames[kComponentFlagCount] = {
+      "gimbal_limit",    "small_angle_exceeded", "nutation_unresolved", "pickoff_invalid",
+      "pickoff_stale",   "pickoff_jump",         "residual_fault",      "torquer_saturated",
+      "spin_low",        "torquer_write_failed", "nav_invalid",         "command_rejected",
+      "tick_skipped",    "gimbal_stop_protect",  "fault_latched",       "tick_invalid",
+      "not_active",      "input_fault"};
+  return (bit >= 0 && bit < kComponentFlagCount) ? kNames[bit] : "";
+}
 
 template <typename T>
 struct GyroComponentConfig {
@@ -80,21 +95,28 @@ struct GyroComponentConfig {
   // Estimation and fault detection.
   T estimator_gain{};            // fraction of the residual fed back per tick (0..1)
   T residual_limit_rad{};        // bound on |measured - predicted|
-  std::uint32_t residual_persistence_ticks{};  // consecutive ticks over the bound -> fault
-  std::uint32_t invalid_persistence_ticks{};   // consecutive bad/stale readings -> fault
+  // Persistences N (gyro/persistence.hpp): N consecutive ticks latch the fault, and so does
+  // the condition in more than one tick in three, given time.
+  std::uint32_t residual_persistence_ticks{};  // |residual| over its bound -> fault
+  std::uint32_t invalid_persistence_ticks{};   // bad/stale/implausible readings -> fault
   std::uint32_t spin_low_persistence_ticks{};
   std::uint32_t torquer_fail_persistence_ticks{};
   std::uint32_t uncage_settle_ticks{};         // ticks in kUncaging before kFree
+  // Fail-operational input handling (docs/component.md, "Corrupt input").
+  std::uint32_t max_tick_gap{8};               // largest tick-count jump bridged as lost ticks
+  std::uint32_t input_persistence_ticks{50};   // unusable guidance input -> fault
+  T max_body_rate_rad_s{T(100)};               // navigation rates beyond this are not believed
 };
 
-// Navigation and guidance for one tick.
+// Navigation and guidance for one tick. A field that cannot be used is ignored and flagged;
+// it never stops the tick (docs/component.md).
 template <typename T>
 struct GuidanceInput {
   ModeRequest request{ModeRequest::kNone};
   Vector2<T> slew_rate_cmd_rad_s{Vector2<T>::Zero()};  // (pitch, yaw), used in kFree
-  bool nav_valid{false};
+  bool nav_valid{false};                               // false: attitude and rates ignored
   Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};  // body attitude at this tick
-  Vector2<T> body_rate_rad_s{Vector2<T>::Zero()};      // body (pitch q, yaw r) rates
+  Vector3<T> body_rate_rad_s{Vector3<T>::Zero()};      // body (roll p, pitch q, yaw r) rates
 };
 
 // Telemetry published every tick (a plain struct: copy it out, log it, downlink it).

@@ -3,8 +3,9 @@
 // exact dynamics, decides the mode, computes the torque law and writes the torquer.
 //
 // Guarantees: no heap, no exceptions, no RTTI; every tick does the same bounded work (no
-// loop depends on data); the same inputs give bit-identical outputs; a refused call leaves
-// the state as it was (its refusal is flagged and counted in telemetry).
+// loop depends on data); the same inputs give bit-identical outputs; once active no input
+// stops a tick (unusable fields are ignored, flagged and counted); a refused call (before
+// activation, or configure() while active) leaves the state as it was, flagged and counted.
 #pragma once
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include "gyro/component_types.hpp"
 #include "gyro/gyro_model.hpp"
 #include "gyro/gyro_port.hpp"
+#include "gyro/persistence.hpp"
 
 namespace gyro {
 
@@ -34,6 +36,7 @@ class GyroComponent {
     if (!m.ok()) return m;
     config_ = config;
     estimator_ = est;
+    cos_protect_ = std::cos(config.gimbal_cone_limit_rad - config.gimbal_stop_margin_rad);
     configured_ = true;
     return c;
   }
@@ -47,49 +50,41 @@ class GyroComponent {
     return Status::kOk;
   }
 
-  // One tick. `tick` must advance by one each call (a gap is flagged and bridged).
+  // One tick, once per release of the rate group. Fail-operational: once active, every call
+  // reads the pickoffs, monitors and writes a torque, whatever the input; a field that cannot
+  // be used is ignored, flagged and counted (kInputIgnored), and a condition that persists
+  // latches a fault. `tick` should advance by one per call; docs/component.md says what
+  // happens when it does not. Before activate() the call is refused (kNotConfigured, counted).
   [[nodiscard]] Status step(std::uint64_t tick, const GuidanceInput<T>& in) noexcept {
-    if (mode_ == GyroMode::kIdle) return Status::kNotConfigured;
-    if (!all_finite(in.slew_rate_cmd_rad_s, in.body_rate_rad_s) || !valid_request(in.request)) {
-      return refuse(Status::kNonFiniteInput, kCommandRejected);
-    }
-    if (have_tick_ && tick <= last_tick_) return refuse(Status::kOutOfRange, kTickSkipped);
+    if (mode_ == GyroMode::kIdle) return refuse(Status::kNotConfigured, kNotActive);
 
     std::uint32_t flags = 0;
-    const std::uint64_t elapsed = have_tick_ ? tick - last_tick_ : 1u;
-    if (elapsed != 1u) flags |= kTickSkipped;
-
-    const bool nav_ok = in.nav_valid && is_rotation(in.R_earth_to_body);
-    if (nav_ok) {
-      R_earth_to_body_ = in.R_earth_to_body;
-      body_rate_ = in.body_rate_rad_s;
-    } else {
-      flags |= kNavInvalid;
-    }
+    const std::uint64_t elapsed = elapsed_ticks(tick, flags);
+    const ModeRequest request = accept_command(in, flags);
+    const bool nav_ok = accept_navigation(in, flags);
+    const bool input_bad = (flags & kUnusableInput) != 0u;
 
     const Reading r = read_and_validate(elapsed, flags);
     const T spin = spin_hz(r);
     if (spin < config_.min_spin_hz) flags |= kSpinLow;
 
     predict_and_check(elapsed, spin, r.accepted && nav_ok, flags);
-    const bool fault_now = update_fault_counters(r.accepted, flags);
-    update_mode(in.request, r.accepted && nav_ok, fault_now);
+    const bool fault_now = update_monitors(r.accepted, input_bad, flags);
+    update_mode(request, r.accepted && nav_ok, fault_now);
 
-    const Vector2<T> rate_cmd = rate_command(in, r.accepted, flags);
+    const Vector2<T> rate_cmd = rate_command(nav_ok, r.accepted, flags);
     const Vector2<T> torque = torque_command(rate_cmd, spin, flags);
     if (port_.write_torquer(torque) == PortStatus::kOk) {
       torque_held_ = torque;
-      torquer_fail_run_ = 0;
+      torquer_fail_ = false;
     } else {
       flags |= kTorquerWriteFailed;  // the hardware keeps whatever it had: assume the last
-      torquer_fail_run_ = sat_inc(torquer_fail_run_);
+      torquer_fail_ = true;
     }
     if (mode_ == GyroMode::kFault) flags |= kFaultLatched;
 
     publish(tick, flags, rate_cmd, spin);
-    last_tick_ = tick;
-    have_tick_ = true;
-    return Status::kOk;
+    return input_bad ? Status::kInputIgnored : Status::kOk;
   }
 
   [[nodiscard]] const GyroTelemetry<T>& telemetry() const noexcept { return telemetry_; }
@@ -97,6 +92,10 @@ class GyroComponent {
   [[nodiscard]] const GyroComponentConfig<T>& config() const noexcept { return config_; }
 
  private:
+  // Input the caller sent that the tick could not use (navigation marked invalid by the
+  // caller is not among them: that is information, not an error).
+  static constexpr std::uint32_t kUnusableInput = kCommandRejected | kTickInvalid;
+
   struct Reading {
     bool accepted{false};
     bool port_ok{false};
@@ -110,24 +109,89 @@ class GyroComponent {
     return v == std::numeric_limits<std::uint32_t>::max() ? v : v + 1u;
   }
 
-  // A refused tick: nothing read or written, state unchanged; the refusal is flagged and
-  // counted so that the ground sees it.
+  // A refused call: nothing read or written, state unchanged; flagged and counted so that the
+  // ground sees it.
   [[nodiscard]] Status refuse(Status s, std::uint32_t flag) noexcept {
     telemetry_.flags = flag;
     count(flag);
     return s;
   }
 
+  // Ticks since the last call, from the tick count. The call itself is the clock (one per
+  // release of the rate group): a jump of 2..max_tick_gap after a trusted count is lost
+  // ticks, bridged (the held torque acted all along); anything else (a repeat, a step back,
+  // a longer jump, or any jump right after an untrusted count) is taken as one tick and the
+  // count resynchronised to it, to be trusted once the next call follows it by one.
+  [[nodiscard]] std::uint64_t elapsed_ticks(std::uint64_t tick, std::uint32_t& flags) noexcept {
+    std::uint64_t elapsed = 1;
+    bool trusted = true;
+    if (have_tick_ && tick != last_tick_ + 1u) {
+      const bool bridgeable = tick_trusted_ && tick > last_tick_ && tick - last_tick_ <= config_.max_tick_gap;
+      if (bridgeable) {
+        elapsed = tick - last_tick_;
+        flags |= kTickSkipped;
+      } else {
+        flags |= kTickInvalid;
+        trusted = false;
+      }
+    }
+    last_tick_ = tick;
+    have_tick_ = true;
+    tick_trusted_ = trusted;
+    return elapsed;
+  }
+
+  // The request (an unknown value is dropped) and the slew command (a non-finite one is
+  // ignored: the last usable command is held).
+  [[nodiscard]] ModeRequest accept_command(const GuidanceInput<T>& in, std::uint32_t& flags) noexcept {
+    ModeRequest request = in.request;
+    if (!valid_request(request)) {
+      request = ModeRequest::kNone;
+      flags |= kCommandRejected;
+    }
+    if (all_finite(in.slew_rate_cmd_rad_s)) {
+      slew_cmd_ = in.slew_rate_cmd_rad_s;
+    } else {
+      flags |= kCommandRejected;
+    }
+    return request;
+  }
+
+  // Navigation is used when marked valid and usable: a rotation, finite rates within
+  // max_body_rate_rad_s. Otherwise the last good attitude is kept (for the estimator's
+  // prediction, whose residual test is then suspended) and the rates are taken as unknown.
+  [[nodiscard]] bool accept_navigation(const GuidanceInput<T>& in, std::uint32_t& flags) noexcept {
+    const bool usable = in.nav_valid && all_finite(in.body_rate_rad_s) &&
+                        in.body_rate_rad_s.cwiseAbs().maxCoeff() <= config_.max_body_rate_rad_s &&
+                        is_rotation(in.R_earth_to_body);
+    if (!usable) {
+      flags |= kNavInvalid;
+      if (in.nav_valid) flags |= kCommandRejected;  // marked valid, yet unusable
+      return false;
+    }
+    R_earth_to_body_ = in.R_earth_to_body;
+    body_rate_ = in.body_rate_rad_s;
+    return true;
+  }
+
+  // A reading is checked against the last accepted one, with a bound of max_pickoff_step_rad
+  // per tick that passed without information (invalid or stale readings, lost ticks): a gap
+  // in the readings never locks them out. A reading that jumped does not widen the bound: a
+  // bias jump stays rejected until its persistence latches the fault. In safe mode (torquers
+  // off) there is no jump test, so the reference follows the pickoffs and a wrong one cannot
+  // hold the gyro in safe mode.
   [[nodiscard]] Reading read_and_validate(std::uint64_t elapsed, std::uint32_t& flags) noexcept {
     Reading r;
     r.port_ok = port_.read_pickoffs(r.raw) == PortStatus::kOk;
     const Vector2<T>& a = r.raw.gimbal_angle_rad;
+    const T bound = config_.max_pickoff_step_rad * (static_cast<T>(blind_ticks_) + static_cast<T>(elapsed));
     if (!r.port_ok || !r.raw.valid || !all_finite(a) || a.cwiseAbs().maxCoeff() > config_.pickoff_range_rad) {
       flags |= kPickoffInvalid;
+      blind_ticks_ = blind_ticks_ + elapsed;
     } else if (have_reading_ && r.raw.sequence == last_sequence_) {
       flags |= kPickoffStale;
-    } else if (have_reading_ && (a - measured_).cwiseAbs().maxCoeff() >
-                                    config_.max_pickoff_step_rad * static_cast<T>(elapsed)) {
+      blind_ticks_ = blind_ticks_ + elapsed;
+    } else if (have_reading_ && mode_ != GyroMode::kFault && (a - measured_).cwiseAbs().maxCoeff() > bound) {
       flags |= kPickoffJump;
       last_sequence_ = r.raw.sequence;
     } else {
@@ -135,6 +199,7 @@ class GyroComponent {
       measured_ = a;
       last_sequence_ = r.raw.sequence;
       have_reading_ = true;
+      blind_ticks_ = 0;
     }
     return r;
   }
@@ -148,12 +213,16 @@ class GyroComponent {
     return config_.nominal_spin_hz;
   }
 
+  // Body pitch and yaw rates (q, r): what the report's uncaging and the caging loop use.
+  [[nodiscard]] Vector2<T> body_pitch_yaw_rate() const noexcept { return Vector2<T>(body_rate_(1), body_rate_(2)); }
+
   // Advances the estimator over the elapsed ticks with the torque held, compares with the
-  // accepted reading, and feeds a fraction of the residual back into the attitude.
+  // accepted reading, and feeds a fraction of the residual back into the attitude. In safe
+  // mode the residual is not monitored (the estimator restarts when the gyro is caged again).
   void predict_and_check(std::uint64_t elapsed, T spin, bool measurable, std::uint32_t& flags) noexcept {
     if (!estimator_ready_) {
       if (measurable) {
-        estimator_ready_ = estimator_.uncage(R_earth_to_body_, body_rate_, measured_) == Status::kOk;
+        estimator_ready_ = estimator_.uncage(R_earth_to_body_, body_pitch_yaw_rate(), measured_) == Status::kOk;
       }
       residual_.setZero();
       return;
@@ -170,24 +239,26 @@ class GyroComponent {
     if (!measurable) return;
     const Vector2<T> predicted(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
     residual_ = measured_ - predicted;
-    if (residual_.cwiseAbs().maxCoeff() > config_.residual_limit_rad) {
-      residual_run_ = sat_inc(residual_run_);
-    } else {
-      residual_run_ = 0;
+    if (mode_ == GyroMode::kFault) {
+      residual_monitor_.reset();
+    } else if (residual_monitor_.update(residual_.cwiseAbs().maxCoeff() > config_.residual_limit_rad,
+                                        config_.residual_persistence_ticks)) {
+      flags |= kResidualFault;
     }
     // Pitching the gyro up raises its gimbal pitch angle, yawing it right its yaw angle.
     (void)estimator_.correct_attitude(config_.estimator_gain * residual_, R_earth_to_body_);
   }
 
-  // Persistence counters; true when a fault condition has lasted long enough.
-  [[nodiscard]] bool update_fault_counters(bool accepted, std::uint32_t& flags) noexcept {
-    bad_reading_run_ = accepted ? 0u : sat_inc(bad_reading_run_);
-    spin_low_run_ = ((flags & kSpinLow) != 0u) ? sat_inc(spin_low_run_) : 0u;
-    if (residual_run_ >= config_.residual_persistence_ticks) flags |= kResidualFault;
-    return bad_reading_run_ >= config_.invalid_persistence_ticks ||
-           residual_run_ >= config_.residual_persistence_ticks ||
-           spin_low_run_ >= config_.spin_low_persistence_ticks ||
-           torquer_fail_run_ >= config_.torquer_fail_persistence_ticks;
+  // The persistence monitors (gyro/persistence.hpp); true when any fault condition has lasted
+  // long enough. The torquer's is fed by the write of the previous tick.
+  [[nodiscard]] bool update_monitors(bool accepted, bool input_bad, std::uint32_t& flags) noexcept {
+    const GyroComponentConfig<T>& c = config_;
+    const bool reading = reading_monitor_.update(!accepted, c.invalid_persistence_ticks);
+    const bool spin = spin_monitor_.update((flags & kSpinLow) != 0u, c.spin_low_persistence_ticks);
+    const bool torquer = torquer_monitor_.update(torquer_fail_, c.torquer_fail_persistence_ticks);
+    const bool input = input_monitor_.update(input_bad, c.input_persistence_ticks);
+    if (input) flags |= kInputFault;
+    return reading || spin || torquer || input || residual_monitor_.tripped(c.residual_persistence_ticks);
   }
 
   void update_mode(ModeRequest request, bool measurable, bool fault_now) noexcept {
@@ -200,7 +271,7 @@ class GyroComponent {
         if (request == ModeRequest::kUncage && measurable) {
           // The report's uncaging: rates from the body, attitude from the body plus the
           // measured gimbal offset.
-          if (estimator_.uncage(R_earth_to_body_, body_rate_, measured_) == Status::kOk) {
+          if (estimator_.uncage(R_earth_to_body_, body_pitch_yaw_rate(), measured_) == Status::kOk) {
             estimator_ready_ = true;
             residual_.setZero();
             settle_ticks_ = 0;
@@ -219,11 +290,12 @@ class GyroComponent {
         if (request == ModeRequest::kCage) mode_ = GyroMode::kCaged;
         break;
       case GyroMode::kFault:
-        // Leaves safe mode only on request, once nothing is wrong; the estimator restarts.
+        // Leaves safe mode on request as soon as no fault condition holds; the estimator
+        // restarts from the next good reading.
         if (request == ModeRequest::kCage) {
           mode_ = GyroMode::kCaged;
           estimator_ready_ = false;
-          residual_run_ = 0;
+          residual_monitor_.reset();
         }
         break;
       case GyroMode::kIdle:
@@ -234,18 +306,20 @@ class GyroComponent {
   [[nodiscard]] static T clamp(T v, T limit) noexcept { return std::min(limit, std::max(-limit, v)); }
 
   // Precession rates wanted this tick (theta', psi'), after limits and stop protection.
-  [[nodiscard]] Vector2<T> rate_command(const GuidanceInput<T>& in, bool accepted, std::uint32_t& flags) noexcept {
+  [[nodiscard]] Vector2<T> rate_command(bool nav_ok, bool accepted, std::uint32_t& flags) noexcept {
     Vector2<T> w = Vector2<T>::Zero();
     if (mode_ == GyroMode::kCaged) {
-      // Electrical caging: follow the body and close the gimbal angles at cage_gain.
-      w = body_rate_;
+      // Electrical caging: follow the body and close the gimbal angles at cage_gain (without
+      // navigation, the gimbal loop alone).
+      if (nav_ok) w = body_pitch_yaw_rate();
       if (accepted) w -= config_.cage_gain_1_s * measured_;
     } else if (mode_ == GyroMode::kFree) {
-      w = in.slew_rate_cmd_rad_s;
-      // No slewing further into a gimbal stop: withhold the outward part of the command.
-      if (estimator_ready_ &&
-          estimator_.gimbal_cone_rad() > config_.gimbal_cone_limit_rad - config_.gimbal_stop_margin_rad) {
-        const Vector2<T> g(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
+      w = slew_cmd_;
+      // No slewing further into a gimbal stop: withhold the outward part of the command. The
+      // gimbal angles are this tick's reading when it was accepted, else the prediction.
+      const bool predicted = !accepted && estimator_ready_;
+      const Vector2<T> g = predicted ? Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad()) : measured_;
+      if ((accepted || predicted) && std::cos(g(0)) * std::cos(g(1)) < cos_protect_) {
         for (int i = 0; i < 2; ++i) {
           if (w(i) * g(i) > T(0)) {
             w(i) = T(0);
@@ -330,22 +404,28 @@ class GyroComponent {
   GyroPort<T>& port_;
   GyroComponentConfig<T> config_{};
   bool configured_{false};
+  T cos_protect_{T(1)};  // cos(gimbal_cone_limit_rad - gimbal_stop_margin_rad)
   GyroMode mode_{GyroMode::kIdle};
   GyroModel<T> estimator_{};
   bool estimator_ready_{false};
   Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};
-  Vector2<T> body_rate_{Vector2<T>::Zero()};
+  Vector3<T> body_rate_{Vector3<T>::Zero()};
+  Vector2<T> slew_cmd_{Vector2<T>::Zero()};  // the last usable slew command
   Vector2<T> measured_{Vector2<T>::Zero()};
   Vector2<T> residual_{Vector2<T>::Zero()};
   Vector2<T> torque_held_{Vector2<T>::Zero()};
   std::uint32_t last_sequence_{0};
   bool have_reading_{false};
+  std::uint64_t blind_ticks_{0};  // ticks without an informative reading since the last accepted
   std::uint64_t last_tick_{0};
   bool have_tick_{false};
-  std::uint32_t bad_reading_run_{0};
-  std::uint32_t residual_run_{0};
-  std::uint32_t spin_low_run_{0};
-  std::uint32_t torquer_fail_run_{0};
+  bool tick_trusted_{false};
+  bool torquer_fail_{false};
+  PersistenceMonitor reading_monitor_{};
+  PersistenceMonitor residual_monitor_{};
+  PersistenceMonitor spin_monitor_{};
+  PersistenceMonitor torquer_monitor_{};
+  PersistenceMonitor input_monitor_{};
   std::uint32_t settle_ticks_{0};
   T nutation_spin_{-1};
   T nutation_beta_{};

@@ -1,5 +1,5 @@
 // Status values returned by every fallible call in gyro. A call that returns anything
-// but Status::kOk has left its object's state exactly as it was.
+// but Status::kOk or Status::kInputIgnored has left its object's state exactly as it was.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +19,7 @@ enum class Status : std::uint8_t {
   kNotConfigured,           // called before a successful configure()
   kInvalidRotation,         // a rotation matrix that is not orthonormal
   kWrongMode,               // not allowed in the current mode (e.g. configure while active)
+  kInputIgnored,            // the call ran, without some unusable input fields (flags say which)
 };
 
 [[nodiscard]] constexpr const char* to_string(Status s) noexcept {
@@ -35,6 +36,7 @@ enum class Status : std::uint8_t {
     case Status::kNotConfigured: return "not configured";
     case Status::kInvalidRotation: return "rotation matrix not orthonormal";
     case Status::kWrongMode: return "not allowed in this mode";
+    case Status::kInputIgnored: return "ran with unusable inputs ignored";
   }
   return "unknown status";
 }

@@ -124,7 +124,9 @@ std::string gnuplot_script(const PlotRequest& r) {
   return s.str();
 }
 
-void plot_csv(const PlotRequest& r) {
+void plot_csv(const PlotRequest& r) { run_gnuplot(gnuplot_script(r), r.png); }
+
+void run_gnuplot(const std::string& script_text, const std::filesystem::path& png) {
   const std::optional<std::filesystem::path> gnuplot = find_gnuplot();
   if (!gnuplot) {
     throw PlotError("gnuplot not found (looked for " +
@@ -140,12 +142,12 @@ void plot_csv(const PlotRequest& r) {
   TempFile script{tmpl};
   {
     std::ofstream out(script.path, std::ios::binary | std::ios::trunc);
-    out << gnuplot_script(r);
+    out << script_text;
     if (!out) throw PlotError("cannot write the gnuplot script " + script.path.string());
   }
 
   std::error_code ec;
-  std::filesystem::remove(r.png, ec);  // so a stale image is never taken for a new one
+  std::filesystem::remove(png, ec);  // so a stale image is never taken for a new one
 
   const std::string prog = gnuplot->string();
   std::string arg = script.path.string();
@@ -162,10 +164,10 @@ void plot_csv(const PlotRequest& r) {
     throw PlotError(prog + " failed (" +
                     (WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                        : std::string("killed by a signal")) +
-                    ") drawing " + r.png.string());
+                    ") drawing " + png.string());
   }
-  if (!std::filesystem::exists(r.png, ec) || std::filesystem::file_size(r.png, ec) == 0) {
-    throw PlotError("gnuplot wrote no image to " + r.png.string());
+  if (!std::filesystem::exists(png, ec) || std::filesystem::file_size(png, ec) == 0) {
+    throw PlotError("gnuplot wrote no image to " + png.string());
   }
 }
 

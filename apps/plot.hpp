@@ -45,4 +45,7 @@ struct PlotRequest {
 // Writes r.png. Throws PlotError when gnuplot is missing, fails, or leaves no image.
 void plot_csv(const PlotRequest& r);
 
+// Runs gnuplot on `script`, which must draw `png`. Throws PlotError as plot_csv does.
+void run_gnuplot(const std::string& script, const std::filesystem::path& png);
+
 }  // namespace gyro::sil

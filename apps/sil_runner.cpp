@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <type_traits>
+#include <vector>
 
 #include "body_motion.hpp"
 #include "gyro/gyro_component.hpp"
@@ -12,23 +14,71 @@ namespace gyro::sil {
 
 namespace {
 
-// Required columns first (kRequiredColumns), then the extras; write_row() follows this order.
-constexpr std::array<std::string_view, 37> kColumns = {
-    "t", "mode", "gimbal_pitch", "gimbal_yaw", "gimbal_pitch_meas", "gimbal_yaw_meas", "theta_rate", "psi_rate",
-    "torque_pitch", "torque_yaw", "flags",
-    // extras
-    "tick", "gimbal_pitch_pred", "gimbal_yaw_pred", "residual_pitch", "residual_yaw", "theta_rate_true",
-    "psi_rate_true", "rate_cmd_pitch", "rate_cmd_yaw", "slew_cmd_pitch", "slew_cmd_yaw", "request",
-    "nutation_pitch", "nutation_yaw", "nutation_pitch_true", "nutation_yaw_true", "cone_true", "spin_hz",
-    "spin_hz_true", "torque_applied_pitch", "torque_applied_yaw", "body_pitch_rate", "body_yaw_rate",
-    "truth_flags", "active_faults", "step_status"};
+// The CSV's columns, in order, each with its value: f(name, value) where value is a double,
+// an unsigned integer or a name. The one list the header, the rows and the finiteness count
+// are made from. The required columns (kRequiredColumns) come first.
+template <typename F>
+void for_each_column(const TickRecord& r, F&& f) {
+  const auto u = [](std::uint32_t v) { return static_cast<std::uint64_t>(v); };
+  f("t", r.t_s);
+  f("mode", to_string(r.mode));
+  f("gimbal_pitch", r.gimbal_true_rad(0));
+  f("gimbal_yaw", r.gimbal_true_rad(1));
+  f("gimbal_pitch_meas", r.gimbal_measured_rad(0));
+  f("gimbal_yaw_meas", r.gimbal_measured_rad(1));
+  f("theta_rate", r.rate_est_rad_s(0));
+  f("psi_rate", r.rate_est_rad_s(1));
+  f("torque_pitch", r.torque_cmd(0));
+  f("torque_yaw", r.torque_cmd(1));
+  f("flags", u(r.flags));
+  // extras
+  f("tick", r.tick);
+  f("gimbal_pitch_pred", r.gimbal_predicted_rad(0));
+  f("gimbal_yaw_pred", r.gimbal_predicted_rad(1));
+  f("residual_pitch", r.residual_rad(0));
+  f("residual_yaw", r.residual_rad(1));
+  f("theta_rate_true", r.rate_true_rad_s(0));
+  f("psi_rate_true", r.rate_true_rad_s(1));
+  f("rate_cmd_pitch", r.rate_cmd_rad_s(0));
+  f("rate_cmd_yaw", r.rate_cmd_rad_s(1));
+  f("slew_cmd_pitch", r.slew_cmd_rad_s(0));
+  f("slew_cmd_yaw", r.slew_cmd_rad_s(1));
+  f("request", request_name(r.request));
+  f("nutation_pitch", r.nutation_est_rad(0));
+  f("nutation_yaw", r.nutation_est_rad(1));
+  f("nutation_pitch_true", r.nutation_true_rad(0));
+  f("nutation_yaw_true", r.nutation_true_rad(1));
+  f("cone_true", r.cone_true_rad);
+  f("spin_hz", r.spin_hz);
+  f("spin_hz_true", r.spin_hz_true);
+  f("torque_applied_pitch", r.torque_applied(0));
+  f("torque_applied_yaw", r.torque_applied(1));
+  f("body_pitch_rate", r.body_rate_rad_s(0));
+  f("body_yaw_rate", r.body_rate_rad_s(1));
+  f("truth_flags", u(r.truth_flags));
+  f("active_faults", u(r.active_faults));
+  f("step_status", static_cast<std::uint64_t>(r.step_status));
+}
 
-static_assert([] {
-  for (std::size_t i = 0; i < kRequiredColumns.size(); ++i) {
-    if (kColumns[i] != kRequiredColumns[i]) return false;
-  }
-  return true;
-}());
+// The names, once (sil_app_test checks the required ones lead, in order).
+const std::vector<std::string_view>& columns() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> n;
+    for_each_column(TickRecord{}, [&](std::string_view name, const auto&) { n.push_back(name); });
+    return n;
+  }();
+  return names;
+}
+
+std::uint64_t nonfinite_count(const TickRecord& r) {
+  std::uint64_t n = 0;
+  for_each_column(r, [&](std::string_view, const auto& v) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>) {
+      if (!std::isfinite(v)) ++n;
+    }
+  });
+  return n;
+}
 
 
 template <typename T>
@@ -207,7 +257,7 @@ class Progress {
 };
 
 template <typename T>
-RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) {
+RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& options) {
   SimulatedGyro<T> stub;
   GyroComponent<T> comp(stub);
   configure_both<T>(s, stub, comp);
@@ -225,7 +275,8 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
   const Status active = comp.activate();
   if (active != Status::kOk) throw RunError(std::string("GyroComponent::activate refused: ") + to_string(active));
 
-  csv.header(csv_columns());
+  observer.on_start();
+  TickRecord rec;
   for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
     if (k > 0) {
       body.advance();
@@ -250,56 +301,41 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     sum.max_abs_gimbal_rad = std::max({sum.max_abs_gimbal_rad, std::abs(static_cast<double>(truth.gimbal_pitch_rad())),
                                        std::abs(static_cast<double>(truth.gimbal_yaw_rad()))});
 
-    const auto num = [&](T v) {
-      const double d = static_cast<double>(v);
-      if (!std::isfinite(d)) ++sum.nonfinite_values;
-      csv.number(d);
-    };
-    const double t = body.time_s();
-    csv.number(t).text(to_string(tm.mode));
-    num(truth.gimbal_pitch_rad());
-    num(truth.gimbal_yaw_rad());
-    num(tm.gimbal_measured_rad(0));
-    num(tm.gimbal_measured_rad(1));
-    num(tm.precession_rate_rad_s(0));
-    num(tm.precession_rate_rad_s(1));
-    num(tm.torque_cmd(0));
-    num(tm.torque_cmd(1));
-    csv.integer(tm.flags);
-    // extras
-    csv.integer(k);
-    num(tm.gimbal_predicted_rad(0));
-    num(tm.gimbal_predicted_rad(1));
-    num(tm.residual_rad(0));
-    num(tm.residual_rad(1));
-    num(truth.rate_rad_s()(0));
-    num(truth.rate_rad_s()(1));
-    num(tm.rate_cmd_rad_s(0));
-    num(tm.rate_cmd_rad_s(1));
-    num(in.slew_rate_cmd_rad_s(0));
-    num(in.slew_rate_cmd_rad_s(1));
-    csv.text(request_name(in.request));
-    num(tm.nutation_amplitude_rad(0));
-    num(tm.nutation_amplitude_rad(1));
-    num(truth.nutation_amplitude_rad()(0));
-    num(truth.nutation_amplitude_rad()(1));
-    num(truth.gimbal_cone_rad());
-    num(tm.spin_hz);
-    num(stub.spin_hz());
-    num(stub.applied_torque()(0));
-    num(stub.applied_torque()(1));
-    num(in.body_rate_rad_s(1));
-    num(in.body_rate_rad_s(2));
-    csv.integer(truth.flags() | (stub.at_gimbal_stop() ? 4u : 0u));
-    csv.integer(stub.active_faults());
-    csv.integer(static_cast<std::uint64_t>(step));
-    csv.end_row();
-    if (!csv.ok()) throw RunError("writing the CSV failed at tick " + std::to_string(k));
+    rec.tick = k;
+    rec.t_s = body.time_s();
+    rec.mode = tm.mode;
+    rec.request = in.request;
+    rec.flags = tm.flags;
+    rec.gimbal_true_rad = Eigen::Vector2d(static_cast<double>(truth.gimbal_pitch_rad()),
+                                          static_cast<double>(truth.gimbal_yaw_rad()));
+    rec.gimbal_measured_rad = tm.gimbal_measured_rad.template cast<double>();
+    rec.gimbal_predicted_rad = tm.gimbal_predicted_rad.template cast<double>();
+    rec.residual_rad = tm.residual_rad.template cast<double>();
+    rec.rate_est_rad_s = tm.precession_rate_rad_s.template cast<double>();
+    rec.rate_true_rad_s = truth.rate_rad_s().template cast<double>();
+    rec.rate_cmd_rad_s = tm.rate_cmd_rad_s.template cast<double>();
+    // What guidance and the body sent, in double (the component received them in T). Read
+    // back from `in` in a float run, GCC 12.2's SLP vectoriser at -O2 drops the float rounding.
+    rec.slew_cmd_rad_s = guidance.slew();
+    rec.torque_cmd = tm.torque_cmd.template cast<double>();
+    rec.nutation_est_rad = tm.nutation_amplitude_rad.template cast<double>();
+    rec.nutation_true_rad = truth.nutation_amplitude_rad().template cast<double>();
+    rec.cone_true_rad = static_cast<double>(truth.gimbal_cone_rad());
+    rec.spin_hz = static_cast<double>(tm.spin_hz);
+    rec.spin_hz_true = static_cast<double>(stub.spin_hz());
+    rec.torque_applied = stub.applied_torque().template cast<double>();
+    rec.body_rate_rad_s = body.rate_rad_s();
+    rec.at_gimbal_stop = stub.at_gimbal_stop();
+    rec.truth_flags = truth.flags() | (rec.at_gimbal_stop ? 4u : 0u);
+    rec.active_faults = stub.active_faults();
+    rec.step_status = step;
+    sum.nonfinite_values += nonfinite_count(rec);
+    observer.on_tick(rec);
+    ++sum.rows;
 
-    progress.tick(k, t);
+    progress.tick(k, rec.t_s);
   }
 
-  sum.rows = csv.rows();
   sum.final_mode = comp.mode();
   sum.counters = comp.telemetry().counters;
   sum.wall_s = progress.elapsed_s();
@@ -308,13 +344,31 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
 
 }  // namespace
 
-std::span<const std::string_view> csv_columns() noexcept { return kColumns; }
+std::span<const std::string_view> csv_columns() noexcept { return columns(); }
 
 int csv_column(std::string_view name) noexcept {
-  for (std::size_t i = 0; i < kColumns.size(); ++i) {
-    if (kColumns[i] == name) return static_cast<int>(i) + 1;
+  const std::vector<std::string_view>& c = columns();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (c[i] == name) return static_cast<int>(i) + 1;
   }
   return 0;
+}
+
+void CsvObserver::on_start() { csv_.header(csv_columns()); }
+
+void CsvObserver::on_tick(const TickRecord& r) {
+  for_each_column(r, [&](std::string_view, const auto& v) {
+    using V = std::decay_t<decltype(v)>;
+    if constexpr (std::is_same_v<V, double>) {
+      csv_.number(v);
+    } else if constexpr (std::is_same_v<V, std::uint64_t>) {
+      csv_.integer(v);
+    } else {
+      csv_.text(v);
+    }
+  });
+  csv_.end_row();
+  if (!csv_.ok()) throw RunError("writing the CSV failed at tick " + std::to_string(r.tick));
 }
 
 void check_configs(const Scenario& s) {
@@ -336,9 +390,14 @@ Scenario load_scenario(const std::filesystem::path& path, std::optional<Precisio
   return s;
 }
 
+RunSummary run_scenario(const Scenario& s, TickObserver& observer, const RunOptions& options) {
+  if (s.run.precision == Precision::kFloat) return run_in<float>(s, observer, options);
+  return run_in<double>(s, observer, options);
+}
+
 RunSummary run_scenario(const Scenario& s, CsvWriter& csv, const RunOptions& options) {
-  if (s.run.precision == Precision::kFloat) return run_in<float>(s, csv, options);
-  return run_in<double>(s, csv, options);
+  CsvObserver observer(csv);
+  return run_scenario(s, observer, options);
 }
 
 std::string flag_names(std::uint32_t flags) {

@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "csv_writer.hpp"
+#include "gyro/status.hpp"
 #include "scenario.hpp"
 
 namespace gyro::sil {
@@ -26,10 +27,60 @@ inline constexpr std::array<std::string_view, 11> kRequiredColumns = {
     "t",          "mode",     "gimbal_pitch", "gimbal_yaw",  "gimbal_pitch_meas", "gimbal_yaw_meas",
     "theta_rate", "psi_rate", "torque_pitch", "torque_yaw", "flags"};
 
+// What one tick of the loop produced, in double whatever the run's precision.
+struct TickRecord {
+  std::uint64_t tick{0};
+  double t_s{0};
+  GyroMode mode{GyroMode::kIdle};
+  ModeRequest request{ModeRequest::kNone};      // what guidance sent this tick
+  std::uint32_t flags{0};                       // the component's, this tick
+  Eigen::Vector2d gimbal_true_rad{Eigen::Vector2d::Zero()};       // the stub's model
+  Eigen::Vector2d gimbal_measured_rad{Eigen::Vector2d::Zero()};   // last accepted reading
+  Eigen::Vector2d gimbal_predicted_rad{Eigen::Vector2d::Zero()};  // the component's estimate
+  Eigen::Vector2d residual_rad{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d rate_est_rad_s{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d rate_true_rad_s{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d rate_cmd_rad_s{Eigen::Vector2d::Zero()};        // after limits and stop protection
+  Eigen::Vector2d slew_cmd_rad_s{Eigen::Vector2d::Zero()};        // what guidance asked
+  Eigen::Vector2d torque_cmd{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d nutation_est_rad{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d nutation_true_rad{Eigen::Vector2d::Zero()};
+  double cone_true_rad{0};
+  double spin_hz{0};
+  double spin_hz_true{0};
+  Eigen::Vector2d torque_applied{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d body_rate_rad_s{Eigen::Vector2d::Zero()};
+  std::uint32_t truth_flags{0};                 // bit 0 gimbal limit, 1 small angle, 2 at the stop
+  bool at_gimbal_stop{false};
+  std::uint32_t active_faults{0};               // the stub's, bit (1 << FaultKind)
+  Status step_status{Status::kOk};
+};
+
+// Receives every tick of a run, tick 0 first.
+class TickObserver {
+ public:
+  virtual ~TickObserver() = default;
+  // Once, after both sides were configured and before tick 0.
+  virtual void on_start() {}
+  virtual void on_tick(const TickRecord& r) = 0;
+};
+
 // Every column written (the required ones first); see docs/scenarios.md for their meaning.
 [[nodiscard]] std::span<const std::string_view> csv_columns() noexcept;
 // 1-based column number of `name` (for gnuplot); 0 if there is no such column.
 [[nodiscard]] int csv_column(std::string_view name) noexcept;
+
+// The gyro_sil CSV as an observer: the header at the start, one row per tick. Throws
+// RunError when a write fails.
+class CsvObserver final : public TickObserver {
+ public:
+  explicit CsvObserver(CsvWriter& csv) noexcept : csv_(csv) {}
+  void on_start() override;
+  void on_tick(const TickRecord& r) override;
+
+ private:
+  CsvWriter& csv_;
+};
 
 // The software failed at run time (not the scenario's fault): the stub or the component
 // refused a call the loop relies on.
@@ -47,12 +98,12 @@ struct RunOptions {
 struct RunSummary {
   Precision precision{Precision::kDouble};
   std::uint64_t ticks{0};            // ticks after tick 0
-  std::uint64_t rows{0};             // CSV rows after the header
+  std::uint64_t rows{0};             // ticks observed (CSV rows after the header)
   GyroMode final_mode{GyroMode::kIdle};
   std::uint32_t flags_seen{0};       // OR of the component's flags over the run
   std::array<std::uint32_t, kComponentFlagCount> counters{};  // the component's, at the end
   std::uint64_t refused_steps{0};    // component.step() calls that did not return kOk
-  std::uint64_t nonfinite_values{0}; // NaN or infinite numbers written to the CSV
+  std::uint64_t nonfinite_values{0}; // NaN or infinite numbers among the CSV's columns
   std::uint64_t gimbal_stop_hits{0}; // ticks in which the stub's gimbal hit its stop
   double max_abs_gimbal_rad{0};      // largest true gimbal angle, either axis
   double wall_s{0};                  // wall-clock time of the loop (not in the CSV)
@@ -66,8 +117,10 @@ void check_configs(const Scenario& s);
 [[nodiscard]] Scenario load_scenario(const std::filesystem::path& path,
                                      std::optional<Precision> precision = std::nullopt);
 
-// Runs the scenario, writing the header and every row to `csv`. Throws ScenarioError
-// (configuration refused) or RunError.
+// Runs the scenario, showing every tick to `observer`. Throws ScenarioError (configuration
+// refused) or RunError.
+RunSummary run_scenario(const Scenario& s, TickObserver& observer, const RunOptions& options = {});
+// The same, writing the header and every row to `csv` (a CsvObserver).
 RunSummary run_scenario(const Scenario& s, CsvWriter& csv, const RunOptions& options = {});
 
 // Names of the flags set in `flags`, separated by '|' ("" for none).

@@ -45,6 +45,8 @@ std::string at_index(const std::string& path, std::size_t i) {
   return path + "[" + std::to_string(i) + "]";
 }
 
+}  // namespace
+
 std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -59,6 +61,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   }
   return row[b.size()];
 }
+
+namespace {
 
 std::string quoted_list(std::span<const std::string_view> names) {
   std::string out;

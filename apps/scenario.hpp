@@ -35,6 +35,9 @@ enum class Precision : std::uint8_t { kDouble, kFloat };
 
 [[nodiscard]] const char* request_name(ModeRequest r) noexcept;
 
+// Levenshtein distance (the "did you mean" of unknown keys).
+[[nodiscard]] std::size_t edit_distance(std::string_view a, std::string_view b);
+
 class ScenarioError : public std::runtime_error {
  public:
   ScenarioError(std::string file, std::string field, std::string reason);

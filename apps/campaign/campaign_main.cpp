@@ -1,0 +1,501 @@
+// gyro_campaign: Monte Carlo campaigns of SIL runs, from one core to a cluster.
+//
+//   gyro_campaign run CAMPAIGN.json -o DIR [-j N] [--shard I/N] [--no-plots] [--quiet]
+//   gyro_campaign run CAMPAIGN.json --run K -o DIR [--no-plots]
+//   gyro_campaign merge DIR... -o DIR [--no-plots] [--quiet]
+//   mpirun -np N gyro_campaign run CAMPAIGN.json -o DIR [-j M]
+//
+// Exit status: 0 done (whatever the runs' verdicts: see summary.md); 1 a failure at run time
+// (an output not writable, a worker failed); 2 bad command line, bad campaign file, shards
+// that do not make one campaign, or an output that would overwrite an input; 3 the outputs
+// were written but a plot failed (gnuplot missing or failing).
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "campaign_error.hpp"
+#include "campaign_file.hpp"
+#include "campaign_plots.hpp"
+#include "campaign_run.hpp"
+#include "cluster.hpp"
+#include "csv_writer.hpp"
+#include "output_dir.hpp"
+#include "plot.hpp"
+#include "run_pool.hpp"
+#include "run_table.hpp"
+#include "sil_runner.hpp"
+#include "strict_json.hpp"
+#include "summary.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace gyro::campaign;
+using json = nlohmann::json;
+
+constexpr int kExitRunFailed = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitPlotFailed = 3;
+
+// A batch of rows goes from a rank to rank 0 when it is this large or this old.
+constexpr std::size_t kBatchBytes = 64 * 1024;
+constexpr std::chrono::milliseconds kBatchAge{250};
+
+struct Options {
+  std::string campaign;
+  std::vector<std::string> dirs;  // merge
+  std::string out;
+  unsigned threads{1};
+  std::string shard;
+  std::optional<std::uint64_t> run;
+  bool no_plots{false};
+  bool quiet{false};
+};
+
+struct Shard {
+  std::uint64_t index{0}, count{1};  // 0-based index of `count`
+  std::uint64_t first{0}, end{0};    // its runs [first, end)
+  [[nodiscard]] bool complete() const { return count == 1; }
+  [[nodiscard]] std::string text() const { return std::to_string(index + 1) + "/" + std::to_string(count); }
+};
+
+// The share [first, end) of `part` out of `parts` of [0, n): contiguous, sizes differ by at most one.
+std::pair<std::uint64_t, std::uint64_t> share(std::uint64_t n, std::uint64_t part, std::uint64_t parts) {
+  return {n * part / parts, n * (part + 1) / parts};
+}
+
+std::optional<Shard> parse_shard(const std::string& text, std::uint64_t runs, std::string& why) {
+  Shard s;
+  if (text.empty()) {
+    s.end = runs;
+    return s;
+  }
+  const std::size_t slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    std::size_t used_i = 0, used_n = 0;
+    const unsigned long long i = std::stoull(text.substr(0, slash), &used_i);
+    const unsigned long long n = std::stoull(text.substr(slash + 1), &used_n);
+    if (used_i != slash || used_n != text.size() - slash - 1 || text[0] == '-' || text[slash + 1] == '-') {
+      throw std::invalid_argument("trailing text");
+    }
+    if (n < 1 || i < 1 || i > n) {
+      why = "--shard " + text + ": expected I/N with 1 <= I <= N";
+      return std::nullopt;
+    }
+    if (n > runs) {
+      why = "--shard " + text + ": more shards than the campaign's " + std::to_string(runs) + " runs";
+      return std::nullopt;
+    }
+    s.index = i - 1;
+    s.count = n;
+  } catch (const std::exception&) {
+    why = "--shard " + text + ": expected I/N, e.g. 2/8 (shard 2 of 8)";
+    return std::nullopt;
+  }
+  std::tie(s.first, s.end) = share(runs, s.index, s.count);
+  return s;
+}
+
+std::string manifest(const Campaign& c, const Shard& s) {
+  const json m = {{"format", "gyro_campaign 1"}, {"campaign", c.fingerprint}, {"runs", c.runs},
+                  {"seed", c.seed},              {"shard", s.text()},         {"first_run", s.first},
+                  {"end_run", s.end}};
+  return m.dump(2) + "\n";
+}
+
+std::vector<std::string> split_rows(const std::string& batch) {
+  std::vector<std::string> rows;
+  for (std::size_t at = 0; at < batch.size();) {
+    const std::size_t nl = batch.find('\n', at);
+    rows.push_back(batch.substr(at, nl - at + 1));
+    at = nl + 1;
+  }
+  return rows;
+}
+
+// The summary, its plots' data and the plots: a complete campaign's outputs after runs.csv.
+int write_summary(const Campaign& c, const OutputDir& out, const std::string& csv, const Options& o) {
+  const RunTable t = parse_run_table(csv, c, "runs.csv");
+  const std::vector<PlotJob> jobs = o.no_plots ? std::vector<PlotJob>{} : campaign_plots(c, t);
+  std::vector<std::string> pngs;
+  for (const PlotJob& j : jobs) {
+    out.write(j.data, j.data_text);
+    pngs.push_back(j.png);
+  }
+  out.write("summary.md", make_summary(c, t, pngs));
+  int status = 0;
+  for (const PlotJob& j : jobs) {
+    const fs::path tmp = out.temporary_for(j.png);
+    try {
+      gyro::sil::run_gnuplot(plot_script(j, (out.path() / j.data).string(), tmp.string()), tmp);
+      out.publish(tmp, j.png);
+    } catch (const gyro::sil::PlotError& e) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      std::fprintf(stderr, "gyro_campaign: plot %s failed: %s\n", j.png.c_str(), e.what());
+      status = kExitPlotFailed;
+    }
+  }
+  if (!o.quiet) {
+    std::uint64_t passed = 0, refused = 0, errors = 0;
+    const std::size_t pass = *t.column("pass"), st = *t.column("status");
+    for (const std::vector<std::string>& row : t.rows) {
+      passed += row[pass] == "true" ? 1u : 0u;
+      refused += row[st] == "refused" ? 1u : 0u;
+      errors += row[st] == "error" ? 1u : 0u;
+    }
+    std::fprintf(stderr, "gyro_campaign: %zu runs: %llu passed, %llu failed, %llu refused, %llu in error; wrote %s\n",
+                 t.rows.size(), static_cast<unsigned long long>(passed),
+                 static_cast<unsigned long long>(t.rows.size() - passed - refused - errors),
+                 static_cast<unsigned long long>(refused), static_cast<unsigned long long>(errors),
+                 (out.path() / "summary.md").c_str());
+  }
+  return status;
+}
+
+// runs.csv, campaign.json, manifest.json; and for a complete campaign the summary and plots.
+int write_outputs(const Campaign& c, const OutputDir& out, const Shard& s, const std::vector<std::string>& rows,
+                  const Options& o) {
+  std::string csv = csv_line(table_header(c)) + "\n";
+  for (const std::string& r : rows) csv += r;
+  out.write("runs.csv", csv);
+  out.write("campaign.json", c.resolved_text);
+  out.write("manifest.json", manifest(c, s));
+  if (!s.complete()) {
+    if (!o.quiet) {
+      std::fprintf(stderr, "gyro_campaign: shard %s (runs %llu to %llu) written to %s; join the shards with "
+                           "gyro_campaign merge\n",
+                   s.text().c_str(), static_cast<unsigned long long>(s.first),
+                   static_cast<unsigned long long>(s.end - 1), out.path().c_str());
+    }
+    return 0;
+  }
+  return write_summary(c, out, csv, o);
+}
+
+const std::vector<std::string> kOutputs = {"runs.csv", "campaign.json", "manifest.json", "summary.md",
+                                           "plots/latency_cdf.png", "plots/latency_cdf.dat",
+                                           "plots/histograms.png", "plots/histograms.dat",
+                                           "plots/scatter.png",    "plots/scatter.dat"};
+
+std::vector<fs::path> inputs_of(const std::string& campaign_path, const Campaign& c) {
+  std::vector<fs::path> in = {campaign_path};
+  if (c.base_path) in.push_back(*c.base_path);
+  return in;
+}
+
+// Rank 0: gathers every row of the shard (its own and the other ranks').
+std::vector<std::string> gather(gyro::campaign::Cluster& cluster, RunPool& pool, const Shard& s, const Options& o) {
+  std::vector<std::string> rows(s.end - s.first);
+  ProgressLine progress(s.end - s.first, !o.quiet);
+  const auto place = [&](std::string row) {
+    const std::optional<std::uint64_t> k = row_run_index(row);
+    if (!k || *k < s.first || *k >= s.end || !rows[*k - s.first].empty()) {
+      throw std::logic_error("a row arrived twice or out of range: " + row.substr(0, 40));
+    }
+    rows[*k - s.first] = std::move(row);
+    progress.advance(1);
+  };
+  int ranks_left = cluster.size() - 1;
+  while (!pool.done() || ranks_left > 0) {
+    for (std::string& r : pool.take(std::chrono::milliseconds(50))) place(std::move(r));
+    std::string batch;
+    bool last = false;
+    bool received = false;
+    while (cluster.receive_rows(batch, last)) {
+      for (std::string& r : split_rows(batch)) place(std::move(r));
+      ranks_left -= last ? 1 : 0;
+      received = true;
+    }
+    if (pool.done() && !received) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  progress.finish();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].empty()) throw std::logic_error("run " + std::to_string(s.first + i) + " never arrived");
+  }
+  return rows;
+}
+
+// Other ranks: stream the rows to rank 0 in batches.
+void stream_rows(gyro::campaign::Cluster& cluster, RunPool& pool) {
+  std::string batch;
+  auto sent = std::chrono::steady_clock::now();
+  while (!pool.done()) {
+    for (const std::string& r : pool.take(std::chrono::milliseconds(100))) batch += r;
+    const auto now = std::chrono::steady_clock::now();
+    if (!batch.empty() && (batch.size() >= kBatchBytes || now - sent >= kBatchAge)) {
+      cluster.send_rows(std::move(batch), false);
+      batch.clear();
+      sent = now;
+    }
+  }
+  cluster.send_rows(std::move(batch), true);
+  cluster.flush();
+}
+
+int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
+  int status = 0;
+  std::string text;
+  Campaign c;
+  std::optional<OutputDir> out;
+  if (cluster.root()) {
+    try {
+      c = read_campaign(o.campaign);
+      out.emplace(o.out, inputs_of(o.campaign, c));
+      for (const std::string& f : kOutputs) out->check(f);
+      text = c.resolved_text;
+    } catch (const CampaignError& e) {
+      std::fprintf(stderr, "gyro_campaign: bad campaign: %s\n", e.what());
+      status = kExitBadInput;
+    } catch (const OutputError& e) {
+      std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+      status = kExitBadInput;
+    }
+  }
+  cluster.broadcast(text, status);
+  if (status != 0) return status;
+  if (!cluster.root()) {
+    try {
+      c = parse_campaign(text, o.campaign, fs::path(o.campaign).parent_path());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gyro_campaign: rank %d: %s\n", cluster.rank(), e.what());
+      cluster.abort(kExitRunFailed);
+    }
+  }
+  std::string why;
+  const std::optional<Shard> shard = parse_shard(o.shard, c.runs, why);
+  if (!shard) {
+    if (cluster.root()) std::fprintf(stderr, "gyro_campaign: %s\n", why.c_str());
+    return kExitBadInput;
+  }
+  const auto [first, end] = share(shard->end - shard->first, static_cast<std::uint64_t>(cluster.rank()),
+                                  static_cast<std::uint64_t>(cluster.size()));
+  try {
+    RunPool pool(c, shard->first + first, shard->first + end, o.threads);
+    if (cluster.root()) {
+      const std::vector<std::string> rows = gather(cluster, pool, *shard, o);
+      status = write_outputs(c, *out, *shard, rows, o);
+    } else {
+      stream_rows(cluster, pool);
+    }
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    status = kExitRunFailed;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gyro_campaign: rank %d failed: %s\n", cluster.rank(), e.what());
+    if (cluster.size() > 1) cluster.abort(kExitRunFailed);
+    return kExitRunFailed;
+  }
+  std::string none;
+  cluster.broadcast(none, status);
+  return status;
+}
+
+gyro::sil::PlotRequest run_plot(const fs::path& csv, const fs::path& png, std::uint64_t k, const RunResult& r) {
+  using gyro::sil::csv_column;
+  gyro::sil::PlotRequest p;
+  p.csv = csv;
+  p.png = png;
+  p.title = "campaign run " + std::to_string(k) + " (seed " + std::to_string(r.plan.seed) + ")";
+  if (r.plan.fault && r.plan.fault->kind) {
+    p.title += "\n" + std::string(gyro::sil::fault_kind_name(*r.plan.fault->kind)) + " at " +
+               format_significant(r.plan.fault->start_s, 4) + " s, axis " + std::to_string(r.plan.fault->axis);
+  }
+  p.time_column = csv_column("t");
+  for (const char* axis : {"pitch", "yaw"}) {
+    const std::string a(axis);
+    p.panels.push_back({"gimbal " + a + " (rad)",
+                        {{csv_column("gimbal_" + a), "true", false, "lw 3 lc rgb '#9a9a9a'"},
+                         {csv_column("gimbal_" + a + "_meas"), "measured (accepted)", true, "lc rgb '#d62728'"},
+                         {csv_column("gimbal_" + a + "_pred"), "estimated", false, "lw 1 dt 2 lc rgb '#1f4e9c'"}}});
+  }
+  p.panels.push_back({"residual (rad)",
+                      {{csv_column("residual_pitch"), "pitch", false, ""}, {csv_column("residual_yaw"), "yaw", false, ""}}});
+  return p;
+}
+
+// --run K: one run alone, with its scenario, time history, plot and table row.
+int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
+  if (cluster.size() > 1) {
+    if (cluster.root()) std::fprintf(stderr, "gyro_campaign: --run takes one process: run it without mpirun\n");
+    return kExitBadInput;
+  }
+  const std::uint64_t k = *o.run;
+  const std::string stem = "run-" + std::to_string(k);
+  Campaign c;
+  std::optional<OutputDir> out;
+  try {
+    c = read_campaign(o.campaign);
+    if (k >= c.runs) {
+      std::fprintf(stderr, "gyro_campaign: --run %llu: the campaign has runs 0 to %llu\n",
+                   static_cast<unsigned long long>(k), static_cast<unsigned long long>(c.runs - 1));
+      return kExitBadInput;
+    }
+    out.emplace(o.out, inputs_of(o.campaign, c));
+    for (const char* ext : {".json", ".csv", "-metrics.csv", ".png"}) out->check(stem + ext);
+  } catch (const CampaignError& e) {
+    std::fprintf(stderr, "gyro_campaign: bad campaign: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    return kExitBadInput;
+  }
+  int status = 0;
+  try {
+    out->write(stem + ".json", plan_run(c, k).scenario.dump(2) + "\n");
+    const fs::path tmp = out->temporary_for(stem + ".csv");
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (f == nullptr) throw OutputError("cannot write " + tmp.string());
+    gyro::sil::CsvWriter csv(f);
+    gyro::sil::CsvObserver history(csv);
+    const RunResult r = execute_run(c, k, &history);
+    const bool written = std::fclose(f) == 0 && csv.ok();
+    const bool has_history = r.status != RunStatus::kRefused && written;
+    if (has_history) {
+      out->publish(tmp, stem + ".csv");
+    } else {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+    }
+    out->write(stem + "-metrics.csv", csv_line(table_header(c)) + "\n" + format_row(c, r));
+    if (has_history && !o.no_plots) {
+      const fs::path png_tmp = out->temporary_for(stem + ".png");
+      try {
+        gyro::sil::plot_csv(run_plot(out->path() / (stem + ".csv"), png_tmp, k, r));
+        out->publish(png_tmp, stem + ".png");
+      } catch (const gyro::sil::PlotError& e) {
+        std::error_code ec;
+        fs::remove(png_tmp, ec);
+        std::fprintf(stderr, "gyro_campaign: plot failed: %s\n", e.what());
+        status = kExitPlotFailed;
+      }
+    }
+    if (!o.quiet) {
+      std::fprintf(stderr, "gyro_campaign: run %llu (seed %llu): %s%s%s; wrote %s/%s.*\n",
+                   static_cast<unsigned long long>(k), static_cast<unsigned long long>(r.plan.seed),
+                   to_string(r.status), r.reason.empty() ? "" : ": ", r.reason.c_str(), out->path().c_str(),
+                   stem.c_str());
+    }
+    if (!written) throw OutputError("writing the time history failed");
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    return kExitRunFailed;
+  }
+  return status;
+}
+
+int merge(const Options& o) {
+  try {
+    std::string text;
+    std::vector<fs::path> inputs, dirs;
+    for (const std::string& d : o.dirs) {
+      const fs::path dir(d);
+      dirs.push_back(dir);
+      for (const char* f : {"campaign.json", "manifest.json", "runs.csv"}) inputs.push_back(dir / f);
+      const std::string t = read_file(dir / "campaign.json");
+      if (text.empty()) {
+        text = t;
+      } else if (t != text) {
+        throw CampaignError((dir / "campaign.json").string(), "(document)",
+                            "not the campaign of " + (dirs.front() / "campaign.json").string());
+      }
+    }
+    const Campaign c = parse_campaign(text, (dirs.front() / "campaign.json").string(), dirs.front());
+    std::vector<std::string> rows(c.runs);
+    std::vector<std::string> from(c.runs);
+    for (const fs::path& dir : dirs) {
+      const fs::path manifest_path = dir / "manifest.json";
+      const json m = parse_strict_json(read_file(manifest_path), manifest_path.string());
+      if (!m.is_object() || !m.contains("campaign") || m["campaign"] != c.fingerprint) {
+        throw CampaignError(manifest_path.string(), "campaign", "not " + c.fingerprint);
+      }
+      const fs::path csv_path = dir / "runs.csv";
+      const RunTable t = parse_run_table(read_file(csv_path), c, csv_path.string());
+      for (const std::vector<std::string>& row : t.rows) {
+        const std::uint64_t k = *cell_number(row[0]) >= 0 ? std::stoull(row[0]) : 0;
+        if (!rows[k].empty()) {
+          throw CampaignError(csv_path.string(), "run " + row[0], "also in " + from[k] + ": the shards overlap");
+        }
+        rows[k] = csv_line(row) + "\n";
+        from[k] = csv_path.string();
+      }
+    }
+    for (std::uint64_t k = 0; k < c.runs; ++k) {
+      if (rows[k].empty()) {
+        std::uint64_t end = k;
+        while (end < c.runs && rows[end].empty()) ++end;
+        throw CampaignError(o.out, "(merge)", "runs " + std::to_string(k) + " to " + std::to_string(end - 1) +
+                                                  " are in none of the directories (a shard missing?)");
+      }
+    }
+    const OutputDir out(o.out, inputs, dirs);
+    for (const std::string& f : kOutputs) out.check(f);
+    Shard whole;
+    whole.end = c.runs;
+    return write_outputs(c, out, whole, rows, o);
+  } catch (const CampaignError& e) {
+    std::fprintf(stderr, "gyro_campaign: cannot merge: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    return kExitBadInput;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (Cluster::launched_without_mpi()) {
+    std::fprintf(stderr, "gyro_campaign: started by an MPI launcher, but built without MPI: every process would run "
+                         "the whole campaign. Rebuild with MPI (Debian: libopenmpi-dev), or use --shard I/N.\n");
+    return kExitBadInput;
+  }
+  gyro::campaign::Cluster cluster(argc, argv);
+  CLI::App app{"gyro_campaign: Monte Carlo campaigns of software-in-the-loop runs (docs/campaigns.md)"};
+  app.require_subcommand(1);
+  Options o;
+  CLI::App* run = app.add_subcommand("run", "run a campaign (or one run of it with --run)");
+  run->add_option("campaign", o.campaign, "campaign file (JSON, see docs/campaigns.md)")->required();
+  run->add_option("-o,--output", o.out, "output directory (created if missing)")->required();
+  run->add_option("-j,--jobs", o.threads, "worker threads per process (0: one per core)")->capture_default_str();
+  run->add_option("--shard", o.shard, "run only shard I of N (1 <= I <= N) and write it for gyro_campaign merge");
+  run->add_option("--run", o.run, "rerun run K alone: its scenario, time history (gyro_sil CSV), plot and row");
+  run->add_flag("--no-plots", o.no_plots, "no gnuplot plots");
+  run->add_flag("-q,--quiet", o.quiet, "no progress or summary line on standard error");
+  CLI::App* merge_cmd = app.add_subcommand("merge", "merge the output directories of a campaign's shards");
+  merge_cmd->add_option("dirs", o.dirs, "the shards' output directories")->required();
+  merge_cmd->add_option("-o,--output", o.out, "output directory (created if missing)")->required();
+  merge_cmd->add_flag("--no-plots", o.no_plots, "no gnuplot plots");
+  merge_cmd->add_flag("-q,--quiet", o.quiet, "no summary line on standard error");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (!cluster.root()) return e.get_exit_code() == 0 ? 0 : kExitBadInput;
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  if (o.threads == 0) o.threads = std::max(1u, std::thread::hardware_concurrency());
+
+  if (merge_cmd->parsed()) {
+    if (cluster.size() > 1) {
+      if (cluster.root()) std::fprintf(stderr, "gyro_campaign: merge takes one process: run it without mpirun\n");
+      return kExitBadInput;
+    }
+    return merge(o);
+  }
+  if (o.run) {
+    if (!o.shard.empty()) {
+      std::fprintf(stderr, "gyro_campaign: --run and --shard do not go together\n");
+      return kExitBadInput;
+    }
+    return rerun(cluster, o);
+  }
+  return run_campaign(cluster, o);
+}

@@ -1,0 +1,57 @@
+#include "run_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gyro::campaign {
+
+MetricsObserver::MetricsObserver(const sil::Scenario& s, const MetricSet& m)
+    : tick_s_(s.run.tick_s),
+      slew_window_(ticks_of(m.slew_rate_error, s.run.tick_s)),
+      pointing_window_(ticks_of(m.pointing_error, s.run.tick_s)) {
+  for (std::size_t i = 0; i < s.fault_count; ++i) {
+    const std::uint64_t start = s.gyro.faults[i].start_tick;
+    fault_tick_ = fault_tick_ ? std::min(*fault_tick_, start) : start;
+  }
+}
+
+std::optional<MetricsObserver::TickWindow> MetricsObserver::ticks_of(const std::optional<Window>& w, double tick_s) {
+  if (!w) return std::nullopt;
+  return TickWindow{static_cast<std::uint64_t>(std::llround(w->from_s / tick_s)),
+                    static_cast<std::uint64_t>(std::llround(w->to_s / tick_s))};
+}
+
+void MetricsObserver::on_tick(const sil::TickRecord& r) {
+  const bool free = r.mode == GyroMode::kFree;
+  const bool healthy = !fault_tick_ || r.tick < *fault_tick_;
+  if (free && healthy) raise(m_.max_residual_healthy_rad, r.residual_rad.cwiseAbs().maxCoeff());
+  if (r.mode == GyroMode::kFault && !safe_tick_) safe_tick_ = r.tick;
+  const auto within = [&](const std::optional<TickWindow>& w) { return w && r.tick >= w->from && r.tick <= w->to; };
+  if (free && within(slew_window_)) {
+    slew_error_sum_ += r.rate_true_rad_s - r.slew_cmd_rad_s;
+    ++slew_ticks_;
+  }
+  if (free && within(pointing_window_)) {
+    raise(m_.max_pointing_error_rad, (r.gimbal_predicted_rad - r.gimbal_true_rad).cwiseAbs().maxCoeff());
+  }
+  if (r.at_gimbal_stop) ++stop_ticks_;
+}
+
+RunMetrics MetricsObserver::finish(const sil::RunSummary& summary) const {
+  RunMetrics out = m_;
+  if (safe_tick_) out.safe_mode_s = static_cast<double>(*safe_tick_) * tick_s_;
+  if (fault_tick_) {
+    out.detected = safe_tick_ && *safe_tick_ >= *fault_tick_;
+    if (*out.detected) out.latency_s = static_cast<double>(*safe_tick_ - *fault_tick_) * tick_s_;
+  }
+  if (slew_ticks_ > 0) {
+    out.slew_rate_error_rad_s = (slew_error_sum_ / static_cast<double>(slew_ticks_)).cwiseAbs().maxCoeff();
+  }
+  out.false_alarm = safe_tick_ && (!fault_tick_ || *safe_tick_ < *fault_tick_);
+  out.final_mode = summary.final_mode;
+  out.counters = summary.counters;
+  out.time_at_stop_s = static_cast<double>(stop_ticks_) * tick_s_;
+  return out;
+}
+
+}  // namespace gyro::campaign

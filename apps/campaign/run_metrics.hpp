@@ -1,0 +1,64 @@
+// The metrics of one run, computed tick by tick from the SIL loop (a TickObserver) and the
+// run's summary. Definitions (docs/campaigns.md):
+//   fault start      the earliest start tick of the scenario's faults (none: no fault)
+//   healthy residual the largest |residual| (either axis) over ticks in mode free before the
+//                    fault start
+//   safe mode        the first tick in mode fault; detected = at or after the fault start;
+//                    false alarm = before it (or in a run without a fault); latency =
+//                    safe mode - fault start when detected
+//   slew-rate error  the mean of (true precession rate - guidance's slew command) over the
+//                    window's ticks in mode free, the larger magnitude of the two axes (the
+//                    mean: a slew's accuracy, not the nutation riding on it)
+//   pointing error   the largest |the component's estimate of the gimbal angles - the true
+//                    angles| (either axis) over ticks in mode free within the window
+//   final mode, flag counters (the component's, at the end), time at the gimbal stop
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "campaign_file.hpp"
+#include "scenario.hpp"
+#include "sil_runner.hpp"
+
+namespace gyro::campaign {
+
+struct RunMetrics {
+  std::optional<double> max_residual_healthy_rad;
+  std::optional<double> safe_mode_s;
+  std::optional<bool> detected;      // runs with a fault only
+  bool false_alarm{false};
+  std::optional<double> latency_s;
+  std::optional<double> slew_rate_error_rad_s;
+  std::optional<double> max_pointing_error_rad;
+  GyroMode final_mode{GyroMode::kIdle};
+  std::array<std::uint32_t, kComponentFlagCount> counters{};
+  double time_at_stop_s{0};
+};
+
+class MetricsObserver final : public sil::TickObserver {
+ public:
+  MetricsObserver(const sil::Scenario& s, const MetricSet& m);
+  void on_tick(const sil::TickRecord& r) override;
+  // The metrics, once the run is over.
+  [[nodiscard]] RunMetrics finish(const sil::RunSummary& summary) const;
+
+ private:
+  struct TickWindow {
+    std::uint64_t from{0}, to{0};
+  };
+  [[nodiscard]] static std::optional<TickWindow> ticks_of(const std::optional<Window>& w, double tick_s);
+  static void raise(std::optional<double>& m, double v) { m = m ? std::max(*m, v) : v; }
+
+  double tick_s_;
+  std::optional<std::uint64_t> fault_tick_;
+  std::optional<TickWindow> slew_window_, pointing_window_;
+  std::optional<std::uint64_t> safe_tick_;
+  Eigen::Vector2d slew_error_sum_{Eigen::Vector2d::Zero()};
+  std::uint64_t slew_ticks_{0};
+  std::uint64_t stop_ticks_{0};
+  RunMetrics m_;
+};
+
+}  // namespace gyro::campaign

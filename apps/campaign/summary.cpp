@@ -1,0 +1,277 @@
+#include "summary.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "scenario.hpp"
+#include "statistics.hpp"
+
+namespace gyro::campaign {
+
+namespace {
+
+// At most this many failed runs are listed (all are in runs.csv).
+constexpr std::size_t kListedFailures = 50;
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
+
+std::string pct(double share) {
+  std::array<char, 32> buf{};
+  const std::to_chars_result r =
+      std::to_chars(buf.data(), buf.data() + buf.size(), 100.0 * share, std::chars_format::fixed, 2);
+  return std::string(buf.data(), r.ptr) + " %";
+}
+
+std::string rate_cells(std::uint64_t k, std::uint64_t n) {
+  if (n == 0) return "– | –";
+  const Bounds b = wilson_interval(k, n);
+  return pct(static_cast<double>(k) / static_cast<double>(n)) + " | " + pct(b.lo) + " – " + pct(b.hi);
+}
+
+std::string num(double v) { return std::isnan(v) ? "–" : format_significant(v, 4); }
+
+// The values of a numeric column over the rows selected, sorted.
+template <typename Pred>
+std::vector<double> values(const RunTable& t, std::size_t col, Pred&& keep) {
+  std::vector<double> out;
+  for (const std::vector<std::string>& row : t.rows) {
+    if (!keep(row)) continue;
+    if (const std::optional<double> v = cell_number(row[col])) out.push_back(*v);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Columns by name (present in every table of this campaign).
+struct Cols {
+  std::size_t run, seed, status, pass, failed, reason;
+  std::optional<std::size_t> fault_kind;
+};
+
+Cols columns_of(const RunTable& t) {
+  Cols c{*t.column("run"), *t.column("seed"), *t.column("status"), *t.column("pass"), *t.column("failed"),
+         *t.column("reason"), t.column("fault_kind")};
+  return c;
+}
+
+// The fault kinds in the order the campaign lists them (each once; "none" included).
+std::vector<std::string> kinds_of(const Campaign& c) {
+  std::vector<std::string> out;
+  if (!c.faults) return out;
+  for (const FaultOption& o : c.faults->options) {
+    const std::string k = o.kind ? sil::fault_kind_name(*o.kind) : "none";
+    if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
+  }
+  return out;
+}
+
+void header_section(const Campaign& c, const RunTable& t, std::string& md) {
+  md += "# Campaign summary";
+  if (!c.description.empty()) md += ": " + c.description;
+  md += "\n\n";
+  md += "| | |\n|---|---|\n";
+  md += "| campaign | `campaign.json` (" + c.fingerprint + ") |\n";
+  const auto d = c.base.find("description");
+  md += "| base scenario | " + (d != c.base.end() && d->is_string() ? d->get<std::string>() : std::string("(no description)")) +
+        " |\n";
+  md += "| runs | " + std::to_string(t.rows.size()) + " (seed " + std::to_string(c.seed) + ") |\n";
+  md += "| dispersed fields | " + std::to_string(c.dispersions.size()) + " |\n";
+  if (c.faults) {
+    md += "| fault injection | " + std::string(c.faults->cycle ? "in turn over " : "at random among ") +
+          std::to_string(c.faults->options.size()) + " options |\n";
+  }
+  md += "\nEvery run's seed, dispersed values, metrics and verdict are in `runs.csv`. Rerun the campaign with\n"
+        "`gyro_campaign run campaign.json -o DIR`, or one run with its time history and plot with\n"
+        "`gyro_campaign run campaign.json --run K -o DIR`. Rates are given with 95 % Wilson score intervals.\n\n";
+}
+
+void outcome_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
+  std::uint64_t passed = 0, refused = 0, errors = 0;
+  for (const std::vector<std::string>& row : t.rows) {
+    if (row[k.pass] == "true") ++passed;
+    if (row[k.status] == "refused") ++refused;
+    if (row[k.status] == "error") ++errors;
+  }
+  const std::uint64_t n = t.rows.size();
+  const std::uint64_t failed = n - passed - refused - errors;
+  md += "## Outcome\n\n| outcome | runs | rate | 95 % interval |\n|---|--:|--:|---|\n";
+  md += "| passed | " + std::to_string(passed) + " | " + rate_cells(passed, n) + " |\n";
+  md += "| failed a criterion | " + std::to_string(failed) + " | " + rate_cells(failed, n) + " |\n";
+  md += "| refused: the dispersed scenario is invalid | " + std::to_string(refused) + " | " + rate_cells(refused, n) + " |\n";
+  md += "| error: the loop failed | " + std::to_string(errors) + " | " + rate_cells(errors, n) + " |\n\n";
+  if (c.criteria.empty()) md += "The campaign sets no criteria: a run passes when it runs.\n\n";
+}
+
+void criteria_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
+  if (c.criteria.empty()) return;
+  md += "## Criteria\n\n| # | criterion | runs judged | failed | failure rate | 95 % interval |\n"
+        "|--:|---|--:|--:|--:|---|\n";
+  for (std::size_t i = 0; i < c.criteria.size(); ++i) {
+    const Criterion& cr = c.criteria[i];
+    const std::string id = std::to_string(i + 1);
+    std::uint64_t judged = 0, failed = 0;
+    for (const std::vector<std::string>& row : t.rows) {
+      if (row[k.status] != "ok") continue;
+      const std::string kind = k.fault_kind ? row[*k.fault_kind] : "none";
+      bool in = true;
+      switch (cr.scope) {
+        case RunScope::kAll: break;
+        case RunScope::kFaultFree: in = kind == "none"; break;
+        case RunScope::kFaulted: in = kind != "none"; break;
+        case RunScope::kKinds: in = std::find(cr.kinds.begin(), cr.kinds.end(), kind) != cr.kinds.end(); break;
+      }
+      if (!in) continue;
+      ++judged;
+      // The verdict itself is the table's: the `failed` cell lists the criteria a run failed.
+      const std::string& f = row[k.failed];
+      for (std::size_t at = 0; at <= f.size();) {
+        const std::size_t end = std::min(f.find(';', at), f.size());
+        if (f.substr(at, end - at) == id) ++failed;
+        at = end + 1;
+      }
+    }
+    md += "| " + id + " | " + cr.label + " | " + std::to_string(judged) + " | " + std::to_string(failed) + " | " +
+          rate_cells(failed, judged) + " |\n";
+  }
+  md += "\nRuns refused or in error are not judged (they count as failed in the outcome).\n\n";
+}
+
+void detection_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
+  if (!c.faults || !c.metrics.safe_mode || !k.fault_kind) return;
+  const std::size_t detected = *t.column("detected"), false_alarm = *t.column("false_alarm"),
+                    latency = *t.column("latency_s");
+  md += "## Fault detection\n\nSafe mode reached at or after the fault's start (detection), or before it (false alarm;\n"
+        "any safe mode in a run without a fault). Latency: from the fault's start to safe mode.\n\n";
+  md += "| fault | runs | detected | detection rate | 95 % interval | false alarms | false-alarm rate | 95 % interval | "
+        "latency p50 (ms) | p95 | p99 | max |\n|---|--:|--:|--:|---|--:|--:|---|--:|--:|--:|--:|\n";
+  for (const std::string& kind : kinds_of(c)) {
+    const auto of_kind = [&](const std::vector<std::string>& row) {
+      return row[*k.fault_kind] == kind && row[k.status] == "ok";
+    };
+    std::uint64_t n = 0, det = 0, fa = 0;
+    for (const std::vector<std::string>& row : t.rows) {
+      if (!of_kind(row)) continue;
+      ++n;
+      det += row[detected] == "true" ? 1u : 0u;
+      fa += row[false_alarm] == "true" ? 1u : 0u;
+    }
+    std::vector<double> lat = values(t, latency, of_kind);
+    for (double& v : lat) v *= 1e3;
+    const bool faulted = kind != "none";
+    md += "| " + kind + " | " + std::to_string(n) + " | " + (faulted ? std::to_string(det) : "–") + " | " +
+          (faulted ? rate_cells(det, n) : "– | –") + " | " + std::to_string(fa) + " | " + rate_cells(fa, n) + " | " +
+          (faulted ? num(percentile(lat, 0.5)) + " | " + num(percentile(lat, 0.95)) + " | " + num(percentile(lat, 0.99)) +
+                         " | " + num(lat.empty() ? kNoValue : lat.back())
+                   : "– | – | – | –") +
+          " |\n";
+  }
+  md += "\n";
+}
+
+void metrics_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
+  const std::vector<MetricColumn> cols = metric_columns(c.metrics);
+  if (cols.empty()) return;
+  md += "## Metrics\n\nOver the runs that ran (status ok) and have a value.\n\n"
+        "| metric | runs with a value | min | p5 | p50 | p95 | p99 | max |\n|---|--:|--:|--:|--:|--:|--:|--:|\n";
+  const auto ran = [&](const std::vector<std::string>& row) { return row[k.status] == "ok"; };
+  for (const MetricColumn& m : cols) {
+    const std::size_t col = *t.column(m.name);
+    if (m.type == ColumnType::kNumber) {
+      const std::vector<double> v = values(t, col, ran);
+      md += "| " + m.name + " | " + std::to_string(v.size()) + " | " + num(v.empty() ? kNoValue : v.front()) + " | " +
+            num(percentile(v, 0.05)) + " | " + num(percentile(v, 0.5)) + " | " + num(percentile(v, 0.95)) + " | " +
+            num(percentile(v, 0.99)) + " | " + num(v.empty() ? kNoValue : v.back()) + " |\n";
+    } else {
+      std::map<std::string, std::uint64_t> counts;
+      std::uint64_t n = 0;
+      for (const std::vector<std::string>& row : t.rows) {
+        if (!ran(row) || row[col].empty()) continue;
+        ++counts[row[col]];
+        ++n;
+      }
+      std::string text;
+      for (const auto& [value, count] : counts) text += (text.empty() ? "" : ", ") + value + ": " + std::to_string(count);
+      md += "| " + m.name + " | " + std::to_string(n) + " | " + text + " | | | | | |\n";
+    }
+  }
+  md += "\n";
+}
+
+void dispersion_section(const Campaign& c, const RunTable& t, std::string& md) {
+  if (c.dispersions.empty()) return;
+  md += "## Dispersed fields\n\n| field | distribution | applied | parameters | drawn min | drawn max |\n"
+        "|---|---|---|---|--:|--:|\n";
+  const auto all = [](const std::vector<std::string>&) { return true; };
+  for (const Dispersion& d : c.dispersions) {
+    std::string params;
+    switch (d.distribution) {
+      case Distribution::kUniform: params = "[" + num(d.min) + ", " + num(d.max) + "]"; break;
+      case Distribution::kNormal: params = "mean " + num(d.mean) + ", sd " + num(d.sd); break;
+      case Distribution::kTruncatedNormal:
+        params = "mean " + num(d.mean) + ", sd " + num(d.sd) + " in [" + num(d.min) + ", " + num(d.max) + "]";
+        break;
+      case Distribution::kUniformInteger:
+        params = "[" + std::to_string(d.int_min) + ", " + std::to_string(d.int_max) + "]";
+        break;
+      case Distribution::kChoice: params = std::to_string(d.values.size()) + " values"; break;
+    }
+    const std::vector<double> v = values(t, *t.column(d.path), all);
+    md += "| `" + d.path + "` | " + to_string(d.distribution) + " | " + to_string(d.apply) + " | " + params + " | " +
+          num(v.empty() ? kNoValue : v.front()) + " | " + num(v.empty() ? kNoValue : v.back()) + " |\n";
+  }
+  md += "\n";
+}
+
+void failures_section(const RunTable& t, const Cols& k, std::string& md) {
+  std::vector<const std::vector<std::string>*> failed;
+  for (const std::vector<std::string>& row : t.rows) {
+    if (row[k.pass] != "true") failed.push_back(&row);
+  }
+  md += "## Failed runs\n\n";
+  if (failed.empty()) {
+    md += "None.\n\n";
+    return;
+  }
+  md += std::to_string(failed.size()) + " runs did not pass";
+  if (failed.size() > kListedFailures) md += " (the first " + std::to_string(kListedFailures) + " below; all in runs.csv)";
+  md += ".\n\n| run | seed | fault | status | why |\n|--:|--:|---|---|---|\n";
+  for (std::size_t i = 0; i < failed.size() && i < kListedFailures; ++i) {
+    const std::vector<std::string>& row = *failed[i];
+    std::string why = row[k.reason];
+    std::replace(why.begin(), why.end(), '|', '/');
+    md += "| " + row[k.run] + " | " + row[k.seed] + " | " + (k.fault_kind ? row[*k.fault_kind] : "–") + " | " +
+          row[k.status] + " | " + why + " |\n";
+  }
+  md += "\n";
+}
+
+}  // namespace
+
+std::string format_significant(double v, int digits) {
+  std::array<char, 48> buf{};
+  const std::to_chars_result r =
+      std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, digits);
+  return std::string(buf.data(), r.ptr);
+}
+
+std::string make_summary(const Campaign& c, const RunTable& t, const std::vector<std::string>& plots) {
+  const Cols k = columns_of(t);
+  std::string md;
+  header_section(c, t, md);
+  outcome_section(c, t, k, md);
+  criteria_section(c, t, k, md);
+  detection_section(c, t, k, md);
+  metrics_section(c, t, k, md);
+  dispersion_section(c, t, md);
+  failures_section(t, k, md);
+  if (!plots.empty()) {
+    md += "## Plots\n\n";
+    for (const std::string& p : plots) md += "![" + p + "](" + p + ")\n\n";
+  }
+  return md;
+}
+
+}  // namespace gyro::campaign

@@ -515,7 +515,10 @@ Scenario parse_scenario(std::string_view json_text, const std::string& file) {
     }
     throw ScenarioError(file, "(document)", "not valid JSON: " + what);
   }
+  return parse_scenario_document(doc, file);
+}
 
+Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& file) {
   Scenario s;
   s.file = file;
   const Reader top(s.file, doc, "", {"description", "run", "gyro", "component", "body", "guidance"});

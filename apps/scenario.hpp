@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -82,6 +83,8 @@ struct Scenario {
 // Parses and checks the schema and the values the component and stub do not check
 // themselves (times, names, counts). Throws ScenarioError; `file` names the source.
 [[nodiscard]] Scenario parse_scenario(std::string_view json_text, const std::string& file);
+// The same from a parsed document (gyro_campaign's dispersed scenarios).
+[[nodiscard]] Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& file);
 
 // Reads the file and parses it (unreadable file: ScenarioError with field "(file)").
 [[nodiscard]] Scenario read_scenario(const std::filesystem::path& path);

@@ -532,6 +532,18 @@ TEST(CampaignRun, GivenAFaultScenarioThenTheLatencyIsWhatTheTimeHistoryShows) {
   EXPECT_LT(*r.metrics->max_residual_healthy_rad, 0.005);
 }
 
+TEST(CampaignRun, GivenAnIntegerDispersionOfACountThenTheRunsRunWithThatCount) {
+  // The scenario's counts take non-negative integers only: the draws must reach it as such.
+  const Campaign c = parse(valid_campaign());
+  for (std::uint64_t k = 0; k < 3; ++k) {
+    const RunResult r = execute_run(c, k);
+    EXPECT_EQ(r.status, RunStatus::kOk) << r.reason;
+    const std::int64_t ticks = r.plan.values[2].get<std::int64_t>();
+    EXPECT_GE(ticks, 40);
+    EXPECT_LE(ticks, 60);
+  }
+}
+
 TEST(CampaignRun, GivenADispersedValueTheComponentRefusesThenTheRunIsReportedRefusedWithTheField) {
   json j = valid_campaign();
   j["dispersions"] = json::array({{{"path", "component.estimator_gain"}, {"distribution", "choice"}, {"values", {1.5}}}});

@@ -309,7 +309,7 @@ bool integer_field(const json& base, const std::vector<PathStep>& steps, const s
   json* node = find_path(trial, steps, why);
   *node = node->get<double>() + 0.5;
   try {
-    (void)sil::parse_scenario(trial.dump(), "trial");
+    (void)sil::parse_scenario_document(trial, "trial");
   } catch (const sil::ScenarioError& e) {
     return e.field() == path && e.reason().find("integer") != std::string::npos;
   }
@@ -756,7 +756,7 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   // The base (with `set`) must be a valid scenario by itself.
   sil::Scenario s;
   try {
-    s = sil::parse_scenario(c.base.dump(), "base scenario");
+    s = sil::parse_scenario_document(c.base, "base scenario");
     sil::check_configs(s);
   } catch (const sil::ScenarioError& e) {
     if (c.base_source == "inline") throw CampaignError(c.file, "base." + e.field(), e.reason());

@@ -37,7 +37,7 @@ RunResult execute_run(const Campaign& c, std::uint64_t index, sil::TickObserver*
   r.plan = plan_run(c, index);
   sil::Scenario s;
   try {
-    s = sil::parse_scenario(r.plan.scenario.dump(), c.file + " run " + std::to_string(index));
+    s = sil::parse_scenario_document(r.plan.scenario, c.file + " run " + std::to_string(index));
     sil::check_configs(s);
   } catch (const sil::ScenarioError& e) {
     r.status = RunStatus::kRefused;

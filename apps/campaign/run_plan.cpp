@@ -82,7 +82,9 @@ json draw(const Dispersion& d, const json& base_value, std::uint64_t seed) {
   } else if (d.distribution == Distribution::kUniformInteger) {
     const double n = static_cast<double>(d.int_max) - static_cast<double>(d.int_min) + 1.0;
     const auto offset = static_cast<std::int64_t>(std::floor(s.uniform(0) * n));
-    value = std::min(d.int_min + offset, d.int_max);
+    const std::int64_t v = std::min(d.int_min + offset, d.int_max);
+    // Non-negative as unsigned, as JSON text reads it (the scenario's counts require that).
+    value = v >= 0 ? json(static_cast<std::uint64_t>(v)) : json(v);
   } else {
     value = raw_number(d, s);
   }

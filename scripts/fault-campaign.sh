@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Regenerates docs/fault-campaign.md: 500 calibration, 1,000 fault-free and 1,000 fault runs.
-# Usage: scripts/fault-campaign.sh [runs] [seed]
+# Regenerates docs/fault-campaign.md with gyro_campaign: campaigns/seeker_faults.json (2,000
+# runs: 1,000 without a fault, about 143 of each fault kind) on every core.
+# Usage: scripts/fault-campaign.sh [gyro_campaign options, e.g. -j 4]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
-cmake --preset host >/dev/null
-cmake --build --preset host --target gyro_fault_campaign
-build/host/tools/gyro_fault_campaign scenarios/seeker_slew.json "${1:-1000}" "${2:-1}" \
-  --markdown docs/fault-campaign.md
+jobs=(-j "$(nproc)")
+[ $# -gt 0 ] && jobs=("$@")
+exec scripts/campaign-report.sh campaigns/seeker_faults.json campaigns/seeker_faults.md.in \
+  docs/fault-campaign.md docs/img/fault-campaign "${jobs[@]}"

@@ -79,12 +79,16 @@ if(MODE STREQUAL "parallel")
   same_outputs("${ref}" "${WORK}/merged")
 
   if(MPIEXEC)
-    # --oversubscribe: more ranks than cores (CI machines may have fewer than 3).
+    # --oversubscribe: more ranks than cores (CI machines may have fewer than 3). Under
+    # AddressSanitizer the leak check is off for the ranks: Open MPI does not free what its
+    # start-up allocates (in plugins it has unloaded by then, beyond suppression); the threads
+    # and shards above run the same code of ours with the leak check on.
+    set(mpi "${CMAKE_COMMAND}" -E env "ASAN_OPTIONS=$ENV{ASAN_OPTIONS}:detect_leaks=0" "${MPIEXEC}")
     foreach(np 1 2 3)
-      run_ok("${MPIEXEC}" -np ${np} --oversubscribe "${EXE}" run "${campaign}" -o "${WORK}/mpi${np}" --no-plots -q)
+      run_ok(${mpi} -np ${np} --oversubscribe "${EXE}" run "${campaign}" -o "${WORK}/mpi${np}" --no-plots -q)
       same_outputs("${ref}" "${WORK}/mpi${np}")
     endforeach()
-    run_ok("${MPIEXEC}" -np 2 --oversubscribe "${EXE}" run "${campaign}" -o "${WORK}/mpi2_threads2" -j 2 --no-plots -q)
+    run_ok(${mpi} -np 2 --oversubscribe "${EXE}" run "${campaign}" -o "${WORK}/mpi2_threads2" -j 2 --no-plots -q)
     same_outputs("${ref}" "${WORK}/mpi2_threads2")
   else()
     message(STATUS "gyro_campaign built without MPI: the mpiexec runs are skipped")

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# Throughput of gyro_campaign on this machine: the seeker fault campaign
+# (campaigns/seeker_faults.json, 2,000 runs) on 1 thread, 2 threads and 2 MPI ranks, each
+# REPS times; prints a Markdown table (the figures of docs/performance.md). With --100k, also
+# times the same campaign with 100,000 runs from one command.
+#
+# Wall time on a shared machine includes whatever else runs: each configuration is run REPS
+# times and the fastest kept (the least disturbed), and the processes' CPU time (user + system,
+# ranks and threads summed, from /usr/bin/time) is given beside it; instructions per run are
+# counted with callgrind on 100 runs.
+#
+# Usage: scripts/campaign-throughput.sh [--100k] [REPS]     (default 5 repetitions)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+big=0
+[ "${1:-}" = "--100k" ] && { big=1; shift; }
+reps=${1:-5}
+for tool in mpirun valgrind /usr/bin/time; do
+  command -v "$tool" >/dev/null || { echo "campaign-throughput.sh: $tool is missing" >&2; exit 1; }
+done
+scripts/setup.sh openmpi-bin libopenmpi-dev valgrind time
+cmake --preset host >/dev/null
+cmake --build --preset host --target gyro_campaign -j2 >/dev/null
+exe=$PWD/build/host/apps/campaign/gyro_campaign
+work=$PWD/build/campaign-throughput
+rm -rf "$work"
+mkdir -p "$work"
+campaign=$PWD/campaigns/seeker_faults.json
+runs=$(sed -n 's/^ *"runs": *\([0-9]*\).*/\1/p' "$campaign")
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+# best WALL CPU for a command: the fastest of $reps runs, and its CPU time.
+measure() {
+  local best="" cpu=""
+  for _ in $(seq "$reps"); do
+    /usr/bin/time -f "%e %U %S" -o "$work/time" "$@" >/dev/null 2>&1
+    read -r wall user sys <"$work/time"
+    if [ -z "$best" ] || awk -v a="$wall" -v b="$best" 'BEGIN { exit !(a < b) }'; then
+      best=$wall
+      cpu=$(awk -v u="$user" -v s="$sys" 'BEGIN { printf "%.2f", u + s }')
+    fi
+  done
+  echo "$best $cpu"
+}
+
+read -r w1 c1 < <(measure "$exe" run "$campaign" -o "$work/j1" -j 1 --no-plots -q)
+read -r w2 c2 < <(measure "$exe" run "$campaign" -o "$work/j2" -j 2 --no-plots -q)
+read -r wm cm < <(measure mpirun -np 2 "$exe" run "$campaign" -o "$work/np2" --no-plots -q)
+for d in j2 np2; do
+  cmp -s "$work/j1/runs.csv" "$work/$d/runs.csv" || { echo "outputs of $d differ from 1 thread" >&2; exit 1; }
+done
+
+# Instructions per run: 100 runs on one thread under callgrind, the whole process counted.
+sed -e 's/"runs": [0-9][0-9]*/"runs": 100/' -e "s#\"\\.\\./scenarios/#\"$PWD/scenarios/#" "$campaign" >"$work/c100.json"
+valgrind --tool=callgrind --callgrind-out-file="$work/callgrind.out" "$exe" run "$work/c100.json" \
+  -o "$work/cg" --no-plots -q >/dev/null 2>"$work/callgrind.log"
+instr=$(sed -n 's/.*Collected : *\([0-9]*\).*/\1/p' "$work/callgrind.log")
+[ -n "$instr" ] || instr=$(sed -n 's/.*I *refs: *\([0-9,]*\).*/\1/p' "$work/callgrind.log" | tr -d ,)
+
+row() {  # name wall cpu workers
+  awk -v n="$1" -v w="$2" -v c="$3" -v k="$4" -v w1="$w1" -v c1="$c1" -v runs="$runs" 'BEGIN {
+    printf "| %s | %.0f | %.2f s | %.2f s | %.0f %% | %.0f %% |\n", n, runs / w, w, c, 100 * w1 / (k * w), 100 * c1 / c }'
+}
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) cores; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "campaign: $runs runs of $(basename "$campaign"); best of $reps; $(mpirun --version | head -1)"
+echo
+echo "| configuration | runs/s | wall (best of $reps) | CPU (user + sys) | parallel efficiency (wall) | CPU efficiency |"
+echo "|---|--:|--:|--:|--:|--:|"
+row "1 thread (\`-j 1\`)" "$w1" "$c1" 1
+row "2 threads (\`-j 2\`)" "$w2" "$c2" 2
+row "2 MPI ranks (\`mpirun -np 2\`)" "$wm" "$cm" 2
+echo
+awk -v i="$instr" 'BEGIN { printf "callgrind: %.3g instructions per run (100 runs on one thread, start-up and outputs included)\n", i / 100 }'
+
+if [ "$big" = 1 ]; then
+  sed -e 's/"runs": [0-9][0-9]*/"runs": 100000/' -e "s#\"\\.\\./scenarios/#\"$PWD/scenarios/#" "$campaign" >"$work/c100k.json"
+  /usr/bin/time -f "%e %U %S" -o "$work/time100k" "$exe" run "$work/c100k.json" -o "$work/100k" -j "$(nproc)" -q
+  read -r wall user sys <"$work/time100k"
+  echo
+  echo "100,000 runs, one command (\`gyro_campaign run ... -j $(nproc)\`, plots included): ${wall} s wall, $(awk -v u="$user" -v s="$sys" 'BEGIN { printf "%.0f", u + s }') s CPU"
+  grep -A6 '^## Outcome' "$work/100k/summary.md" | tail -4
+fi

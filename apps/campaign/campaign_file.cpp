@@ -703,7 +703,7 @@ std::uint64_t fnv1a64(std::string_view text) noexcept {
 const std::vector<std::string>& component_flag_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
-    for (int i = 0; i < kComponentFlagCount; ++i) n.push_back(sil::flag_names(1u << static_cast<unsigned>(i)));
+    for (int i = 0; i < kComponentFlagCount; ++i) n.emplace_back(gyro::flag_name(i));
     return n;
   }();
   return names;

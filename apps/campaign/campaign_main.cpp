@@ -27,6 +27,7 @@
 #include "csv_writer.hpp"
 #include "output_dir.hpp"
 #include "plot.hpp"
+#include "progress_line.hpp"
 #include "run_pool.hpp"
 #include "run_table.hpp"
 #include "sil_runner.hpp"
@@ -205,7 +206,7 @@ std::vector<std::string> gather(gyro::campaign::Cluster& cluster, RunPool& pool,
   };
   int ranks_left = cluster.size() - 1;
   while (!pool.done() || ranks_left > 0) {
-    for (std::string& r : pool.take(std::chrono::milliseconds(50))) place(std::move(r));
+    for (std::string& r : pool.take(std::chrono::milliseconds(100))) place(std::move(r));
     std::string batch;
     bool last = false;
     bool received = false;
@@ -214,7 +215,7 @@ std::vector<std::string> gather(gyro::campaign::Cluster& cluster, RunPool& pool,
       ranks_left -= last ? 1 : 0;
       received = true;
     }
-    if (pool.done() && !received) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (pool.done() && !received) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   progress.finish();
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -419,7 +420,7 @@ int merge(const Options& o) {
       const fs::path csv_path = dir / "runs.csv";
       const RunTable t = parse_run_table(read_file(csv_path), c, csv_path.string());
       for (const std::vector<std::string>& row : t.rows) {
-        const std::uint64_t k = *cell_number(row[0]) >= 0 ? std::stoull(row[0]) : 0;
+        const std::uint64_t k = std::stoull(row[0]);  // a run index < runs (parse_run_table checked)
         if (!rows[k].empty()) {
           throw CampaignError(csv_path.string(), "run " + row[0], "also in " + from[k] + ": the shards overlap");
         }

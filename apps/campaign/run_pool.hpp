@@ -25,8 +25,8 @@ class RunPool {
   RunPool(const RunPool&) = delete;
   RunPool& operator=(const RunPool&) = delete;
 
-  // The rows finished since the last call (each a run's table row, '\n'-terminated), waiting
-  // up to `wait` for one. Rethrows what a worker threw.
+  // The rows finished since the last call (each a run's table row, '\n'-terminated), after
+  // `wait` or as soon as every run has finished. Rethrows what a worker threw.
   [[nodiscard]] std::vector<std::string> take(std::chrono::milliseconds wait);
   // Every run finished and taken.
   [[nodiscard]] bool done() const;
@@ -43,22 +43,6 @@ class RunPool {
   std::vector<std::string> finished_;
   std::exception_ptr failure_;
   std::vector<std::thread> workers_;
-};
-
-// The progress line on standard error: runs done, the run rate and the time left. On a
-// terminal it is redrawn in place twice a second; otherwise a line every 10 s.
-class ProgressLine {
- public:
-  ProgressLine(std::uint64_t total, bool enabled);
-  void advance(std::uint64_t runs);
-  void finish();
-
- private:
-  void print(bool final_line);
-
-  std::uint64_t total_, done_{0};
-  bool enabled_, tty_;
-  std::chrono::steady_clock::time_point start_, last_;
 };
 
 }  // namespace gyro::campaign

@@ -565,13 +565,32 @@ TEST(CampaignTable, GivenRowsThenTheyReadBackCellForCell) {
   std::string text = csv_line(table_header(c)) + "\n";
   for (std::uint64_t k = 0; k < 4; ++k) text += format_row(c, execute_run(c, k));
   const RunTable t = parse_run_table(text, c, "runs.csv");
-  ASSERT_EQ(t.rows.size(), 4u);
-  std::string again = csv_line(t.header) + "\n";
-  for (const auto& row : t.rows) again += csv_line(row) + "\n";
+  ASSERT_EQ(t.size(), 4u);
+  std::string again = csv_line(t.header()) + "\n";
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    std::vector<std::string> cells;
+    for (std::size_t col = 0; col < t.header().size(); ++col) cells.push_back(t.text(i, col));
+    again += csv_line(cells) + "\n";
+  }
   EXPECT_EQ(again, text);
   // Numbers read back to the very doubles written.
   const RunPlan p = plan_run(c, 2);
-  EXPECT_EQ(*cell_number(t.rows[2][*t.column("gyro.rotor.friction")]), p.values[0].get<double>());
+  EXPECT_EQ(*cell_number(t.cell(2, *t.column("gyro.rotor.friction"))), p.values[0].get<double>());
+}
+
+TEST(CampaignTable, GivenAQuotedReasonThenTheTableGivesItsTextAndTheOtherCellsStayInPlace) {
+  json j = valid_campaign();
+  j["dispersions"] = json::array({{{"path", "component.estimator_gain"}, {"distribution", "choice"}, {"values", {1.5}}}});
+  j["set"] = {{"description", "a, b"}};
+  const Campaign c = parse(j);
+  RunResult r = execute_run(c, 0);
+  r.reason = "say \"no\", twice";
+  const RunTable t(c, {format_row(c, r)}, "runs.csv");
+  const std::size_t reason = *t.column("reason");
+  EXPECT_EQ(t.cell(0, reason), "\"say \"\"no\"\", twice\"");
+  EXPECT_EQ(t.text(0, reason), "say \"no\", twice");
+  EXPECT_EQ(t.cell(0, *t.column("status")), "refused");
+  EXPECT_EQ(t.cell(0, 0), "0");
 }
 
 TEST(CampaignTable, GivenCellsWithCommasAndQuotesThenTheyAreQuotedAndSplitBack) {
@@ -590,6 +609,8 @@ TEST(CampaignTable, GivenATableOfAnotherCampaignOrOutOfRangeRunsThenItIsRefused)
   row.replace(0, 1, "99");  // run 99 of a 10-run campaign
   EXPECT_THROW((void)parse_run_table(header + row, c, "runs.csv"), CampaignError);
   EXPECT_THROW((void)parse_run_table(header + "1,2\n", c, "runs.csv"), CampaignError);
+  EXPECT_THROW((void)parse_run_table(header + "1,\"2\n", c, "runs.csv"), CampaignError);  // quote not closed
+  EXPECT_THROW((void)parse_run_table(header.substr(0, header.size() - 1), c, "runs.csv"), CampaignError);
 }
 
 // ---------------------------------------------------------------------------------------

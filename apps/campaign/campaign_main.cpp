@@ -122,8 +122,7 @@ std::vector<std::string> split_rows(const std::string& batch) {
 }
 
 // The summary, its plots' data and the plots: a complete campaign's outputs after runs.csv.
-int write_summary(const Campaign& c, const OutputDir& out, const std::string& csv, const Options& o) {
-  const RunTable t = parse_run_table(csv, c, "runs.csv");
+int write_summary(const Campaign& c, const OutputDir& out, const RunTable& t, const Options& o) {
   const std::vector<PlotJob> jobs = o.no_plots ? std::vector<PlotJob>{} : campaign_plots(c, t);
   std::vector<std::string> pngs;
   for (const PlotJob& j : jobs) {
@@ -147,14 +146,14 @@ int write_summary(const Campaign& c, const OutputDir& out, const std::string& cs
   if (!o.quiet) {
     std::uint64_t passed = 0, refused = 0, errors = 0;
     const std::size_t pass = *t.column("pass"), st = *t.column("status");
-    for (const std::vector<std::string>& row : t.rows) {
-      passed += row[pass] == "true" ? 1u : 0u;
-      refused += row[st] == "refused" ? 1u : 0u;
-      errors += row[st] == "error" ? 1u : 0u;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      passed += t.cell(i, pass) == "true" ? 1u : 0u;
+      refused += t.cell(i, st) == "refused" ? 1u : 0u;
+      errors += t.cell(i, st) == "error" ? 1u : 0u;
     }
     std::fprintf(stderr, "gyro_campaign: %zu runs: %llu passed, %llu failed, %llu refused, %llu in error; wrote %s\n",
-                 t.rows.size(), static_cast<unsigned long long>(passed),
-                 static_cast<unsigned long long>(t.rows.size() - passed - refused - errors),
+                 t.size(), static_cast<unsigned long long>(passed),
+                 static_cast<unsigned long long>(t.size() - passed - refused - errors),
                  static_cast<unsigned long long>(refused), static_cast<unsigned long long>(errors),
                  (out.path() / "summary.md").c_str());
   }
@@ -162,11 +161,13 @@ int write_summary(const Campaign& c, const OutputDir& out, const std::string& cs
 }
 
 // runs.csv, campaign.json, manifest.json; and for a complete campaign the summary and plots.
-int write_outputs(const Campaign& c, const OutputDir& out, const Shard& s, const std::vector<std::string>& rows,
+// `rows`: the shard's rows in run order, each a line of CSV with its newline.
+int write_outputs(const Campaign& c, const OutputDir& out, const Shard& s, std::vector<std::string> rows,
                   const Options& o) {
-  std::string csv = csv_line(table_header(c)) + "\n";
-  for (const std::string& r : rows) csv += r;
-  out.write("runs.csv", csv);
+  out.write("runs.csv", [&](std::ostream& f) {
+    f << csv_line(table_header(c)) << '\n';
+    for (const std::string& r : rows) f << r;
+  });
   out.write("campaign.json", c.resolved_text);
   out.write("manifest.json", manifest(c, s));
   if (!s.complete()) {
@@ -178,7 +179,7 @@ int write_outputs(const Campaign& c, const OutputDir& out, const Shard& s, const
     }
     return 0;
   }
-  return write_summary(c, out, csv, o);
+  return write_summary(c, out, RunTable(c, std::move(rows), "runs.csv"), o);
 }
 
 const std::vector<std::string> kOutputs = {"runs.csv", "campaign.json", "manifest.json", "summary.md",
@@ -281,8 +282,8 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
   try {
     RunPool pool(c, shard->first + first, shard->first + end, o.threads);
     if (cluster.root()) {
-      const std::vector<std::string> rows = gather(cluster, pool, *shard, o);
-      status = write_outputs(c, *out, *shard, rows, o);
+      std::vector<std::string> rows = gather(cluster, pool, *shard, o);
+      status = write_outputs(c, *out, *shard, std::move(rows), o);
     } else {
       stream_rows(cluster, pool);
     }
@@ -410,8 +411,9 @@ int merge(const Options& o) {
     }
     const Campaign c = parse_campaign(text, (dirs.front() / "campaign.json").string(), dirs.front());
     std::vector<std::string> rows(c.runs);
-    std::vector<std::string> from(c.runs);
-    for (const fs::path& dir : dirs) {
+    std::vector<std::size_t> from(c.runs);  // which directory each run came from
+    for (std::size_t d = 0; d < dirs.size(); ++d) {
+      const fs::path& dir = dirs[d];
       const fs::path manifest_path = dir / "manifest.json";
       const json m = parse_strict_json(read_file(manifest_path), manifest_path.string());
       if (!m.is_object() || !m.contains("campaign") || m["campaign"] != c.fingerprint) {
@@ -419,13 +421,14 @@ int merge(const Options& o) {
       }
       const fs::path csv_path = dir / "runs.csv";
       const RunTable t = parse_run_table(read_file(csv_path), c, csv_path.string());
-      for (const std::vector<std::string>& row : t.rows) {
-        const std::uint64_t k = std::stoull(row[0]);  // a run index < runs (parse_run_table checked)
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        const std::uint64_t k = *row_run_index(t.line(i));  // < runs: parse_run_table checked
         if (!rows[k].empty()) {
-          throw CampaignError(csv_path.string(), "run " + row[0], "also in " + from[k] + ": the shards overlap");
+          throw CampaignError(csv_path.string(), "run " + std::to_string(k),
+                              "also in " + (dirs[from[k]] / "runs.csv").string() + ": the shards overlap");
         }
-        rows[k] = csv_line(row) + "\n";
-        from[k] = csv_path.string();
+        rows[k] = t.line(i) + "\n";
+        from[k] = d;
       }
     }
     for (std::uint64_t k = 0; k < c.runs; ++k) {
@@ -440,7 +443,7 @@ int merge(const Options& o) {
     for (const std::string& f : kOutputs) out.check(f);
     Shard whole;
     whole.end = c.runs;
-    return write_outputs(c, out, whole, rows, o);
+    return write_outputs(c, out, whole, std::move(rows), o);
   } catch (const CampaignError& e) {
     std::fprintf(stderr, "gyro_campaign: cannot merge: %s\n", e.what());
     return kExitBadInput;

@@ -33,7 +33,8 @@ std::string g(double v) { return format_significant(v, 10); }
 std::vector<double> column_values(const RunTable& t, std::size_t col, std::size_t status,
                                   const std::string& kind = "", std::optional<std::size_t> kind_col = {}) {
   std::vector<double> out;
-  for (const std::vector<std::string>& row : t.rows) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const RunTable::Row row = t.row(i);
     if (row[status] != "ok") continue;
     if (kind_col && row[*kind_col] != kind) continue;
     if (const std::optional<double> v = cell_number(row[col])) out.push_back(*v);
@@ -52,7 +53,7 @@ std::optional<PlotJob> latency_cdf(const Campaign& c, const RunTable& t) {
     const std::string kind = sil::fault_kind_name(*o.kind);
     if (std::find(titles.begin(), titles.end(), kind) != titles.end()) continue;
     std::uint64_t runs = 0;
-    for (const std::vector<std::string>& row : t.rows) runs += row[kind_col] == kind && row[status] == "ok" ? 1u : 0u;
+    for (std::size_t i = 0; i < t.size(); ++i) runs += t.cell(i, kind_col) == kind && t.cell(i, status) == "ok" ? 1u : 0u;
     const std::vector<double> v = column_values(t, latency, status, kind, kind_col);
     if (runs == 0 || v.empty()) continue;
     titles.push_back(kind);
@@ -112,9 +113,10 @@ std::optional<PlotJob> scatter(const Campaign& c, const RunTable& t) {
   for (const Scatter& s : c.scatter) {
     const std::size_t x = *t.column(s.x), y = *t.column(s.y);
     job.data_text += "# " + s.x + ", " + s.y + ", passed (1) or not (0)\n";
-    for (const std::vector<std::string>& row : t.rows) {
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const RunTable::Row row = t.row(i);
       if (row[status] != "ok" || row[x].empty() || row[y].empty()) continue;
-      job.data_text += row[x] + " " + row[y] + " " + (row[pass] == "true" ? "1" : "0") + "\n";
+      job.data_text += std::string(row[x]) + " " + std::string(row[y]) + " " + (row[pass] == "true" ? "1" : "0") + "\n";
     }
     job.data_text += "\n\n";
   }

@@ -73,10 +73,14 @@ void OutputDir::publish(const fs::path& temporary, const std::string& relative) 
 }
 
 void OutputDir::write(const std::string& relative, std::string_view content) const {
+  write(relative, [&](std::ostream& out) { out.write(content.data(), static_cast<std::streamsize>(content.size())); });
+}
+
+void OutputDir::write(const std::string& relative, const std::function<void(std::ostream&)>& fill) const {
   const fs::path tmp = temporary_for(relative);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    fill(out);
     out.close();
     if (!out) {
       std::error_code ec;

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -30,6 +32,8 @@ class OutputDir {
 
   // Writes `content` to dir/relative atomically (a temporary beside it, then a rename).
   void write(const std::string& relative, std::string_view content) const;
+  // The same, the content written by `fill` to the stream.
+  void write(const std::string& relative, const std::function<void(std::ostream&)>& fill) const;
 
   // A fresh temporary path beside dir/relative (same directory, so a rename is atomic), and
   // the rename that publishes it.

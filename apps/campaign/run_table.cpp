@@ -198,11 +198,6 @@ std::optional<std::vector<std::string>> split_csv_line(std::string_view line) {
   return cells;
 }
 
-std::optional<std::size_t> RunTable::column(std::string_view name) const {
-  const auto it = std::find(header.begin(), header.end(), name);
-  if (it == header.end()) return std::nullopt;
-  return static_cast<std::size_t>(it - header.begin());
-}
 
 std::optional<std::uint64_t> row_run_index(std::string_view row) {
   const std::size_t comma = row.find(',');
@@ -213,35 +208,94 @@ std::optional<std::uint64_t> row_run_index(std::string_view row) {
   return v;
 }
 
-RunTable parse_run_table(std::string_view text, const Campaign& c, const std::string& file) {
-  RunTable t;
-  std::size_t pos = 0;
-  std::size_t line_no = 0;
-  const std::vector<std::string> expected = table_header(c);
-  while (pos < text.size()) {
-    const std::size_t nl = text.find('\n', pos);
-    if (nl == std::string_view::npos) throw CampaignError(file, "line " + std::to_string(line_no + 1), "no newline at the end");
-    const std::string_view line = text.substr(pos, nl - pos);
-    pos = nl + 1;
-    ++line_no;
-    const std::optional<std::vector<std::string>> cells = split_csv_line(line);
-    const std::string where = "line " + std::to_string(line_no);
-    if (!cells) throw CampaignError(file, where, "broken quoting");
-    if (line_no == 1) {
-      if (*cells != expected) throw CampaignError(file, where, "the header is not this campaign's (" + csv_line(expected) + ")");
-      t.header = *cells;
-      continue;
+namespace {
+
+// The start of each cell of a CSV line (quotes respected), then the line's length; nullopt if
+// a quote is not closed or a closing quote is not followed by a comma.
+std::optional<std::vector<std::uint32_t>> cell_starts(std::string_view line) {
+  std::vector<std::uint32_t> starts = {0};
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted) {
+      if (ch != '"') continue;
+      if (i + 1 < line.size() && line[i + 1] == '"') {
+        ++i;
+        continue;
+      }
+      quoted = false;
+      if (i + 1 < line.size() && line[i + 1] != ',') return std::nullopt;
+    } else if (ch == '"' && i == starts.back()) {
+      quoted = true;
+    } else if (ch == ',') {
+      starts.push_back(static_cast<std::uint32_t>(i + 1));
     }
-    if (cells->size() != expected.size()) {
-      throw CampaignError(file, where, std::to_string(cells->size()) + " cells, expected " + std::to_string(expected.size()));
+  }
+  if (quoted) return std::nullopt;
+  starts.push_back(static_cast<std::uint32_t>(line.size() + 1));  // as if a comma followed
+  return starts;
+}
+
+}  // namespace
+
+RunTable::RunTable(const Campaign& c, std::vector<std::string> rows, const std::string& file, std::size_t first_line)
+    : header_(table_header(c)), lines_(std::move(rows)) {
+  const std::size_t width = header_.size();
+  starts_.reserve(lines_.size() * (width + 1));
+  for (std::size_t r = 0; r < lines_.size(); ++r) {
+    std::string& line = lines_[r];
+    if (!line.empty() && line.back() == '\n') line.pop_back();
+    const std::string where = "line " + std::to_string(first_line + r);
+    if (line.size() >= UINT32_MAX) throw CampaignError(file, where, "a line longer than 4 GB");
+    const std::optional<std::vector<std::uint32_t>> st = cell_starts(line);
+    if (!st) throw CampaignError(file, where, "broken quoting");
+    if (st->size() != width + 1) {
+      throw CampaignError(file, where, std::to_string(st->size() - 1) + " cells, expected " + std::to_string(width));
     }
     const std::optional<std::uint64_t> run = row_run_index(line);
-    if (!run || *run >= c.runs) throw CampaignError(file, where, "not a run of this campaign: \"" + cells->front() + "\"");
-    t.rows.push_back(*cells);
+    if (!run || *run >= c.runs) {
+      throw CampaignError(file, where, "not a run of this campaign: \"" + line.substr(0, line.find(',')) + "\"");
+    }
+    starts_.insert(starts_.end(), st->begin(), st->end());
   }
-  if (t.header.empty()) throw CampaignError(file, "line 1", "empty file");
-  return t;
+}
+
+std::optional<std::size_t> RunTable::column(std::string_view name) const {
+  const auto it = std::find(header_.begin(), header_.end(), name);
+  if (it == header_.end()) return std::nullopt;
+  return static_cast<std::size_t>(it - header_.begin());
+}
+
+std::string_view RunTable::cell(std::size_t row, std::size_t col) const {
+  const std::uint32_t* st = &starts_[row * (header_.size() + 1)];
+  return std::string_view(lines_[row]).substr(st[col], st[col + 1] - st[col] - 1);
+}
+
+std::string RunTable::text(std::size_t row, std::size_t col) const {
+  const std::string_view raw = cell(row, col);
+  if (raw.empty() || raw.front() != '"') return std::string(raw);
+  return split_csv_line(raw)->front();
+}
+
+RunTable parse_run_table(std::string_view text, const Campaign& c, const std::string& file) {
+  const std::size_t nl = text.find('\n');
+  if (text.empty()) throw CampaignError(file, "line 1", "empty file");
+  if (nl == std::string_view::npos || text.back() != '\n') {
+    throw CampaignError(file, "line " + std::to_string(std::count(text.begin(), text.end(), '\n') + 1),
+                        "no newline at the end");
+  }
+  const std::vector<std::string> expected = table_header(c);
+  const std::optional<std::vector<std::string>> header = split_csv_line(text.substr(0, nl));
+  if (!header || *header != expected) {
+    throw CampaignError(file, "line 1", "the header is not this campaign's (" + csv_line(expected) + ")");
+  }
+  std::vector<std::string> rows;
+  for (std::size_t pos = nl + 1; pos < text.size();) {
+    const std::size_t end = text.find('\n', pos);
+    rows.emplace_back(text.substr(pos, end - pos));
+    pos = end + 1;
+  }
+  return RunTable(c, std::move(rows), file);
 }
 
 }  // namespace gyro::campaign
-

@@ -37,7 +37,8 @@ std::string num(double v) { return std::isnan(v) ? "–" : format_significant(v,
 template <typename Pred>
 std::vector<double> values(const RunTable& t, std::size_t col, Pred&& keep) {
   std::vector<double> out;
-  for (const std::vector<std::string>& row : t.rows) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const RunTable::Row row = t.row(i);
     if (!keep(row)) continue;
     if (const std::optional<double> v = cell_number(row[col])) out.push_back(*v);
   }
@@ -77,7 +78,7 @@ void header_section(const Campaign& c, const RunTable& t, std::string& md) {
   const auto d = c.base.find("description");
   md += "| base scenario | " + (d != c.base.end() && d->is_string() ? d->get<std::string>() : std::string("(no description)")) +
         " |\n";
-  md += "| runs | " + std::to_string(t.rows.size()) + " (seed " + std::to_string(c.seed) + ") |\n";
+  md += "| runs | " + std::to_string(t.size()) + " (seed " + std::to_string(c.seed) + ") |\n";
   md += "| dispersed fields | " + std::to_string(c.dispersions.size()) + " |\n";
   if (c.faults) {
     md += "| fault injection | " + std::string(c.faults->cycle ? "in turn over " : "at random among ") +
@@ -90,12 +91,13 @@ void header_section(const Campaign& c, const RunTable& t, std::string& md) {
 
 void outcome_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
   std::uint64_t passed = 0, refused = 0, errors = 0;
-  for (const std::vector<std::string>& row : t.rows) {
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const RunTable::Row row = t.row(i);
     if (row[k.pass] == "true") ++passed;
     if (row[k.status] == "refused") ++refused;
     if (row[k.status] == "error") ++errors;
   }
-  const std::uint64_t n = t.rows.size();
+  const std::uint64_t n = t.size();
   const std::uint64_t failed = n - passed - refused - errors;
   md += "## Outcome\n\n| outcome | runs | rate | 95 % interval |\n|---|--:|--:|---|\n";
   md += "| passed | " + std::to_string(passed) + " | " + rate_cells(passed, n) + " |\n";
@@ -109,13 +111,14 @@ void criteria_section(const Campaign& c, const RunTable& t, const Cols& k, std::
   if (c.criteria.empty()) return;
   md += "## Criteria\n\n| # | criterion | runs judged | failed | failure rate | 95 % interval |\n"
         "|--:|---|--:|--:|--:|---|\n";
-  for (std::size_t i = 0; i < c.criteria.size(); ++i) {
-    const Criterion& cr = c.criteria[i];
-    const std::string id = std::to_string(i + 1);
+  for (std::size_t n = 0; n < c.criteria.size(); ++n) {
+    const Criterion& cr = c.criteria[n];
+    const std::string id = std::to_string(n + 1);
     std::uint64_t judged = 0, failed = 0;
-    for (const std::vector<std::string>& row : t.rows) {
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const RunTable::Row row = t.row(i);
       if (row[k.status] != "ok") continue;
-      const std::string kind = k.fault_kind ? row[*k.fault_kind] : "none";
+      const std::string_view kind = k.fault_kind ? row[*k.fault_kind] : std::string_view("none");
       bool in = true;
       switch (cr.scope) {
         case RunScope::kAll: break;
@@ -126,7 +129,7 @@ void criteria_section(const Campaign& c, const RunTable& t, const Cols& k, std::
       if (!in) continue;
       ++judged;
       // The verdict itself is the table's: the `failed` cell lists the criteria a run failed.
-      const std::string& f = row[k.failed];
+      const std::string_view f = row[k.failed];
       for (std::size_t at = 0; at <= f.size();) {
         const std::size_t end = std::min(f.find(';', at), f.size());
         if (f.substr(at, end - at) == id) ++failed;
@@ -148,11 +151,12 @@ void detection_section(const Campaign& c, const RunTable& t, const Cols& k, std:
   md += "| fault | runs | detected | detection rate | 95 % interval | false alarms | false-alarm rate | 95 % interval | "
         "latency p50 (ms) | p95 | p99 | max |\n|---|--:|--:|--:|---|--:|--:|---|--:|--:|--:|--:|\n";
   for (const std::string& kind : kinds_of(c)) {
-    const auto of_kind = [&](const std::vector<std::string>& row) {
+    const auto of_kind = [&](const RunTable::Row& row) {
       return row[*k.fault_kind] == kind && row[k.status] == "ok";
     };
     std::uint64_t n = 0, det = 0, fa = 0;
-    for (const std::vector<std::string>& row : t.rows) {
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const RunTable::Row row = t.row(i);
       if (!of_kind(row)) continue;
       ++n;
       det += row[detected] == "true" ? 1u : 0u;
@@ -176,7 +180,7 @@ void metrics_section(const Campaign& c, const RunTable& t, const Cols& k, std::s
   if (cols.empty()) return;
   md += "## Metrics\n\nOver the runs that ran (status ok) and have a value.\n\n"
         "| metric | runs with a value | min | p5 | p50 | p95 | p99 | max |\n|---|--:|--:|--:|--:|--:|--:|--:|\n";
-  const auto ran = [&](const std::vector<std::string>& row) { return row[k.status] == "ok"; };
+  const auto ran = [&](const RunTable::Row& row) { return row[k.status] == "ok"; };
   for (const MetricColumn& m : cols) {
     const std::size_t col = *t.column(m.name);
     if (m.type == ColumnType::kNumber) {
@@ -187,9 +191,10 @@ void metrics_section(const Campaign& c, const RunTable& t, const Cols& k, std::s
     } else {
       std::map<std::string, std::uint64_t> counts;
       std::uint64_t n = 0;
-      for (const std::vector<std::string>& row : t.rows) {
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        const RunTable::Row row = t.row(i);
         if (!ran(row) || row[col].empty()) continue;
-        ++counts[row[col]];
+        ++counts[std::string(row[col])];
         ++n;
       }
       std::string text;
@@ -204,7 +209,7 @@ void dispersion_section(const Campaign& c, const RunTable& t, std::string& md) {
   if (c.dispersions.empty()) return;
   md += "## Dispersed fields\n\n| field | distribution | applied | parameters | drawn min | drawn max |\n"
         "|---|---|---|---|--:|--:|\n";
-  const auto all = [](const std::vector<std::string>&) { return true; };
+  const auto all = [](const RunTable::Row&) { return true; };
   for (const Dispersion& d : c.dispersions) {
     std::string params;
     switch (d.distribution) {
@@ -226,9 +231,10 @@ void dispersion_section(const Campaign& c, const RunTable& t, std::string& md) {
 }
 
 void failures_section(const RunTable& t, const Cols& k, std::string& md) {
-  std::vector<const std::vector<std::string>*> failed;
-  for (const std::vector<std::string>& row : t.rows) {
-    if (row[k.pass] != "true") failed.push_back(&row);
+  std::vector<std::size_t> failed;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const RunTable::Row row = t.row(i);
+    if (row[k.pass] != "true") failed.push_back(i);
   }
   md += "## Failed runs\n\n";
   if (failed.empty()) {
@@ -239,11 +245,11 @@ void failures_section(const RunTable& t, const Cols& k, std::string& md) {
   if (failed.size() > kListedFailures) md += " (the first " + std::to_string(kListedFailures) + " below; all in runs.csv)";
   md += ".\n\n| run | seed | fault | status | why |\n|--:|--:|---|---|---|\n";
   for (std::size_t i = 0; i < failed.size() && i < kListedFailures; ++i) {
-    const std::vector<std::string>& row = *failed[i];
-    std::string why = row[k.reason];
+    const RunTable::Row row = t.row(failed[i]);
+    std::string why = t.text(failed[i], k.reason);
     std::replace(why.begin(), why.end(), '|', '/');
-    md += "| " + row[k.run] + " | " + row[k.seed] + " | " + (k.fault_kind ? row[*k.fault_kind] : "–") + " | " +
-          row[k.status] + " | " + why + " |\n";
+    md += "| " + std::string(row[k.run]) + " | " + std::string(row[k.seed]) + " | " +
+          std::string(k.fault_kind ? row[*k.fault_kind] : "–") + " | " + std::string(row[k.status]) + " | " + why + " |\n";
   }
   md += "\n";
 }

@@ -247,9 +247,11 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
   std::string text;
   Campaign c;
   std::optional<OutputDir> out;
+  std::string why;
   if (cluster.root()) {
     try {
       c = read_campaign(o.campaign);
+      if (!parse_shard(o.shard, c.runs, why)) throw std::invalid_argument(why);
       out.emplace(o.out, inputs_of(o.campaign, c));
       for (const std::string& f : kOutputs) out->check(f);
       text = c.resolved_text;
@@ -257,6 +259,9 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
       std::fprintf(stderr, "gyro_campaign: bad campaign: %s\n", e.what());
       status = kExitBadInput;
     } catch (const OutputError& e) {
+      std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+      status = kExitBadInput;
+    } catch (const std::invalid_argument& e) {
       std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
       status = kExitBadInput;
     }
@@ -271,12 +276,7 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
       cluster.abort(kExitRunFailed);
     }
   }
-  std::string why;
-  const std::optional<Shard> shard = parse_shard(o.shard, c.runs, why);
-  if (!shard) {
-    if (cluster.root()) std::fprintf(stderr, "gyro_campaign: %s\n", why.c_str());
-    return kExitBadInput;
-  }
+  const std::optional<Shard> shard = parse_shard(o.shard, c.runs, why);  // valid: rank 0 checked it
   const auto [first, end] = share(shard->end - shard->first, static_cast<std::uint64_t>(cluster.rank()),
                                   static_cast<std::uint64_t>(cluster.size()));
   try {

@@ -185,6 +185,19 @@ elseif(MODE STREQUAL "refusals")
     message(FATAL_ERROR "the input campaign was changed")
   endif()
 
+  # A directory gyro_campaign did not write: its files are not replaced.
+  file(WRITE "${WORK}/users/runs.csv" "the user's own table\n")
+  run_refused(2 "runs.csv exists, in a directory gyro_campaign did not write"
+              "${EXE}" run "${campaign}" -o "${WORK}/users" --no-plots -q)
+  file(READ "${WORK}/users/runs.csv" users)
+  if(NOT users STREQUAL "the user's own table\n")
+    message(FATAL_ERROR "the user's runs.csv was changed")
+  endif()
+  # One it wrote: run again into it, and --run K beside the campaign's outputs.
+  run_ok("${EXE}" run "${campaign}" -o "${WORK}/again" --no-plots -q)
+  run_ok("${EXE}" run "${campaign}" -o "${WORK}/again" --no-plots -q)
+  run_ok("${EXE}" run "${campaign}" --run 3 -o "${WORK}/again" --no-plots -q)
+
   # Shards: a missing one, an overlap, another campaign, the output among the inputs.
   foreach(i 1 2)
     run_ok("${EXE}" run "${campaign}" -o "${WORK}/s${i}" --shard ${i}/2 --no-plots -q)

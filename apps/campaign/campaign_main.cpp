@@ -253,7 +253,7 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
       c = read_campaign(o.campaign);
       if (!parse_shard(o.shard, c.runs, why)) throw std::invalid_argument(why);
       out.emplace(o.out, inputs_of(o.campaign, c));
-      for (const std::string& f : kOutputs) out->check(f);
+      out->claim(kOutputs);
       text = c.resolved_text;
     } catch (const CampaignError& e) {
       std::fprintf(stderr, "gyro_campaign: bad campaign: %s\n", e.what());
@@ -341,7 +341,7 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
       return kExitBadInput;
     }
     out.emplace(o.out, inputs_of(o.campaign, c));
-    for (const char* ext : {".json", ".csv", "-metrics.csv", ".png"}) out->check(stem + ext);
+    out->claim({stem + ".json", stem + ".csv", stem + "-metrics.csv", stem + ".png"});
   } catch (const CampaignError& e) {
     std::fprintf(stderr, "gyro_campaign: bad campaign: %s\n", e.what());
     return kExitBadInput;
@@ -440,7 +440,7 @@ int merge(const Options& o) {
       }
     }
     const OutputDir out(o.out, inputs, dirs);
-    for (const std::string& f : kOutputs) out.check(f);
+    out.claim(kOutputs);
     Shard whole;
     whole.end = c.runs;
     return write_outputs(c, out, whole, std::move(rows), o);

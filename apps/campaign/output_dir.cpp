@@ -46,6 +46,19 @@ void OutputDir::check(const std::string& relative) const {
   }
 }
 
+void OutputDir::claim(const std::vector<std::string>& names) const {
+  for (const std::string& n : names) check(n);
+  std::error_code ec;
+  if (fs::exists(dir_ / kOutputMarker, ec)) return;
+  for (const std::string& n : names) {
+    if (fs::exists(dir_ / n, ec)) {
+      throw OutputError((dir_ / n).string() + " exists, in a directory gyro_campaign did not write (no " +
+                        kOutputMarker + "): choose a new or empty directory");
+    }
+  }
+  write(kOutputMarker, "This directory holds gyro_campaign's outputs: it replaces its own files here.\n");
+}
+
 fs::path OutputDir::temporary_for(const std::string& relative) const {
   check(relative);
   const fs::path target = dir_ / relative;

@@ -1,8 +1,9 @@
 // The output directory of gyro_campaign. It never harms a user's files: every file is
 // written to a temporary in the target directory and renamed over its name only once it is
 // complete, so an interrupted or failed write leaves the previous file (or none), never a
-// torn one; and no output may be one of the inputs (the campaign, its base scenario, the
-// directories being merged).
+// torn one; no output may be one of the inputs (the campaign, its base scenario, the
+// directories being merged); and a file is replaced only in a directory gyro_campaign has
+// claimed (its marker file, .gyro_campaign), never in someone else's.
 #pragma once
 
 #include <filesystem>
@@ -20,6 +21,9 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The marker of a directory gyro_campaign writes to.
+inline constexpr const char* kOutputMarker = ".gyro_campaign";
+
 class OutputDir {
  public:
   // Creates `dir` if needed. Throws OutputError if it cannot, or if it is one of
@@ -29,6 +33,10 @@ class OutputDir {
 
   // Throws OutputError if `relative` would be one of the inputs.
   void check(const std::string& relative) const;
+
+  // Checks every name (check()), then claims the directory: one without the marker may not
+  // hold a file of these names already (OutputError naming it); the marker is then written.
+  void claim(const std::vector<std::string>& names) const;
 
   // Writes `content` to dir/relative atomically (a temporary beside it, then a rename).
   void write(const std::string& relative, std::string_view content) const;

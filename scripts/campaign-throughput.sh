@@ -4,17 +4,17 @@
 # REPS times; prints a Markdown table (the figures of docs/performance.md). With --100k, also
 # times the same campaign with 100,000 runs from one command.
 #
-# Wall time on a shared machine includes whatever else runs: each configuration is run REPS
-# times and the fastest kept (the least disturbed), and the processes' CPU time (user + system,
-# ranks and threads summed, from /usr/bin/time) is given beside it; instructions per run are
-# counted with callgrind on 100 runs.
+# Wall time on a shared machine includes whatever else runs: the configurations are run in
+# turn, REPS rounds, and each one's fastest round kept (the least disturbed), with the
+# processes' CPU time (user + system, ranks and threads summed, from /usr/bin/time) beside it;
+# instructions per run are counted with callgrind on 100 runs.
 #
-# Usage: scripts/campaign-throughput.sh [--100k] [REPS]     (default 5 repetitions)
+# Usage: scripts/campaign-throughput.sh [--100k] [REPS]     (default 9 rounds)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 big=0
 [ "${1:-}" = "--100k" ] && { big=1; shift; }
-reps=${1:-5}
+reps=${1:-9}
 for tool in mpirun valgrind /usr/bin/time; do
   command -v "$tool" >/dev/null || { echo "campaign-throughput.sh: $tool is missing" >&2; exit 1; }
 done
@@ -29,23 +29,28 @@ campaign=$PWD/campaigns/seeker_faults.json
 runs=$(sed -n 's/^ *"runs": *\([0-9]*\).*/\1/p' "$campaign")
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-# best WALL CPU for a command: the fastest of $reps runs, and its CPU time.
-measure() {
-  local best="" cpu=""
-  for _ in $(seq "$reps"); do
-    /usr/bin/time -f "%e %U %S" -o "$work/time" "$@" >/dev/null 2>&1
+# The three configurations in turn, REPS rounds (so a burst of other work on the machine
+# hits them alike); for each the fastest round is kept (the least disturbed), with its CPU.
+declare -A best cpu
+configs=(j1 j2 np2)
+run_config() {
+  case $1 in
+    j1) "$exe" run "$campaign" -o "$work/j1" -j 1 --no-plots -q ;;
+    j2) "$exe" run "$campaign" -o "$work/j2" -j 2 --no-plots -q ;;
+    np2) mpirun -np 2 "$exe" run "$campaign" -o "$work/np2" --no-plots -q ;;
+  esac
+}
+for _ in $(seq "$reps"); do
+  for cfg in "${configs[@]}"; do
+    /usr/bin/time -f "%e %U %S" -o "$work/time" bash -c "$(declare -f run_config); exe='$exe' campaign='$campaign' work='$work' run_config $cfg" >/dev/null 2>&1
     read -r wall user sys <"$work/time"
-    if [ -z "$best" ] || awk -v a="$wall" -v b="$best" 'BEGIN { exit !(a < b) }'; then
-      best=$wall
-      cpu=$(awk -v u="$user" -v s="$sys" 'BEGIN { printf "%.2f", u + s }')
+    if [ -z "${best[$cfg]:-}" ] || awk -v a="$wall" -v b="${best[$cfg]}" 'BEGIN { exit !(a < b) }'; then
+      best[$cfg]=$wall
+      cpu[$cfg]=$(awk -v u="$user" -v s="$sys" 'BEGIN { printf "%.2f", u + s }')
     fi
   done
-  echo "$best $cpu"
-}
-
-read -r w1 c1 < <(measure "$exe" run "$campaign" -o "$work/j1" -j 1 --no-plots -q)
-read -r w2 c2 < <(measure "$exe" run "$campaign" -o "$work/j2" -j 2 --no-plots -q)
-read -r wm cm < <(measure mpirun -np 2 "$exe" run "$campaign" -o "$work/np2" --no-plots -q)
+done
+w1=${best[j1]} c1=${cpu[j1]} w2=${best[j2]} c2=${cpu[j2]} wm=${best[np2]} cm=${cpu[np2]}
 for d in j2 np2; do
   cmp -s "$work/j1/runs.csv" "$work/$d/runs.csv" || { echo "outputs of $d differ from 1 thread" >&2; exit 1; }
 done
@@ -62,7 +67,7 @@ row() {  # name wall cpu workers
     printf "| %s | %.0f | %.2f s | %.2f s | %.0f %% | %.0f %% |\n", n, runs / w, w, c, 100 * w1 / (k * w), 100 * c1 / c }'
 }
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) cores; load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "campaign: $runs runs of $(basename "$campaign"); best of $reps; $(mpirun --version | head -1)"
+echo "campaign: $runs runs of $(basename "$campaign"); best of $reps rounds; $(mpirun --version | head -1)"
 echo
 echo "| configuration | runs/s | wall (best of $reps) | CPU (user + sys) | parallel efficiency (wall) | CPU efficiency |"
 echo "|---|--:|--:|--:|--:|--:|"

@@ -68,3 +68,40 @@ template SampleRunSummary run_report_sample<float, flight_rules_check::IgnoreSte
 template SampleRunSummary run_report_sample<double, flight_rules_check::IgnoreStep>(
     double, int, flight_rules_check::IgnoreStep&&) noexcept;
 }  // namespace gyro
+
+#include "gyro/dormand_prince8.hpp"
+#include "gyro/gimbal_dynamics.hpp"
+#include "gyro/gimbal_kinematics.hpp"
+#include "gyro/gimbal_plant.hpp"
+#include "gyro/gimbal_plant_config.hpp"
+#include "gyro/gimbal_stop.hpp"
+#include "gyro/seeker_gimbal.hpp"
+
+namespace gyro {
+template class GimbalPlant<float>;
+template class GimbalPlant<double>;
+template ConfigCheck check<float>(const GimbalPlantConfig<float>&) noexcept;
+template ConfigCheck check<double>(const GimbalPlantConfig<double>&) noexcept;
+template GimbalParameters<float> make_gimbal_parameters<float>(const GimbalPlantConfig<float>&) noexcept;
+template GimbalParameters<double> make_gimbal_parameters<double>(const GimbalPlantConfig<double>&) noexcept;
+template GimbalAccelerations<float> gimbal_accelerations<float>(const GimbalParameters<float>&,
+                                                                const GimbalJointState<float>&,
+                                                                const GimbalDrive<float>&,
+                                                                const BodyInstant<float>&) noexcept;
+template GimbalAccelerations<double> gimbal_accelerations<double>(const GimbalParameters<double>&,
+                                                                  const GimbalJointState<double>&,
+                                                                  const GimbalDrive<double>&,
+                                                                  const BodyInstant<double>&) noexcept;
+template bool resolve_gimbal_stop<float>(const GimbalStop<float>&, const GimbalInertias<float>&,
+                                         GimbalJointState<float>&) noexcept;
+template bool resolve_gimbal_stop<double>(const GimbalStop<double>&, const GimbalInertias<double>&,
+                                          GimbalJointState<double>&) noexcept;
+template float gimbal_fastest_rate<float>(const GimbalPlantConfig<float>&) noexcept;
+template double gimbal_fastest_rate<double>(const GimbalPlantConfig<double>&) noexcept;
+template int gimbal_substeps<float>(const GimbalPlantConfig<float>&, float) noexcept;
+template int gimbal_substeps<double>(const GimbalPlantConfig<double>&, double) noexcept;
+template GimbalPlantConfig<float> seeker_gimbal_config<float>() noexcept;
+template GimbalPlantConfig<double> seeker_gimbal_config<double>() noexcept;
+template float gimbal_kinetic_energy<float>(const GimbalInertias<float>&, const GimbalBodyRates<float>&) noexcept;
+template double gimbal_kinetic_energy<double>(const GimbalInertias<double>&, const GimbalBodyRates<double>&) noexcept;
+}  // namespace gyro

@@ -56,7 +56,8 @@ template <typename T>
   const T s = std::sin(c.stop_cone_rad), co = std::cos(c.stop_cone_rad);
   // The yaw joint's inertia with a free spin, at zero pitch and at the stop (linear in sin^2).
   const T d0 = c.outer_gimbal_inertia(2) + c.inner_gimbal_inertia(2) + a;
-  const T d1 = c.outer_gimbal_inertia(2) + c.inner_gimbal_inertia(0) * s * s + (c.inner_gimbal_inertia(2) + a) * co * co;
+  const T d1 =
+      c.outer_gimbal_inertia(2) + c.inner_gimbal_inertia(0) * s * s + (c.inner_gimbal_inertia(2) + a) * co * co;
   const T h = c.spin_inertia * (T(2) * kPi<T> * c.max_spin_hz + c.max_body_rate_rad_s);
   const T nutation = std::max(h / std::sqrt(j_pitch * d0), h * co / std::sqrt(j_pitch * d1));
   const T pitch_damping = (c.inner_friction + c.inner_coulomb_torque / c.coulomb_rate_scale_rad_s) / j_pitch;

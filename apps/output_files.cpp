@@ -157,6 +157,7 @@ TempFile TempFile::beside(const fs::path& final_path) {
     if (d == d.parent_path()) break;
   }
   for (const fs::path& d : missing) {
+    const signal_cleanup::Deferred created_then_registered;
     if (::mkdir(d.c_str(), 0777) != 0) {
       const int e = errno;
       if (e == EEXIST && fs::is_directory(d, ec)) continue;
@@ -172,6 +173,7 @@ TempFile TempFile::beside(const fs::path& final_path) {
   const std::string stem = "." + final_path.filename().string() + ".";
   for (int attempt = 0; attempt < 100; ++attempt) {
     const fs::path candidate = dir / (stem + random_suffix() + ".tmp");
+    const signal_cleanup::Deferred created_then_registered;
     const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0666);
     if (fd < 0) {
       const int e = errno;
@@ -197,6 +199,7 @@ TempFile TempFile::private_file(const std::string& stem) {
   const char* tmpdir = std::getenv("TMPDIR");
   const fs::path dir = (tmpdir != nullptr && *tmpdir != '\0') ? fs::path(tmpdir) : fs::path("/tmp");
   std::string tmpl = (dir / (stem + "_XXXXXX")).string();
+  const signal_cleanup::Deferred created_then_registered;
   const int fd = ::mkostemp(tmpl.data(), O_CLOEXEC);  // O_CREAT | O_EXCL, mode 0600
   if (fd < 0) throw OutputError("cannot create a temporary file in " + quoted(dir) + ": " + errno_text(errno));
   t.path_ = tmpl;

@@ -1,6 +1,7 @@
 #include "signal_cleanup.hpp"
 
 #include <limits.h>
+#include <pthread.h>
 #include <unistd.h>
 
 #include <array>
@@ -77,5 +78,14 @@ void forget(int slot) noexcept {
 }
 
 void set_child(pid_t process_group) noexcept { g_child = static_cast<std::sig_atomic_t>(process_group); }
+
+Deferred::Deferred() noexcept {
+  sigset_t block;
+  sigemptyset(&block);
+  for (int sig : kSignals) sigaddset(&block, sig);
+  ::pthread_sigmask(SIG_BLOCK, &block, &old_);
+}
+
+Deferred::~Deferred() { ::pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
 
 }  // namespace gyro::sil::signal_cleanup

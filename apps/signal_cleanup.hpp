@@ -6,6 +6,7 @@
 // kill, signal, raise), on paths copied into static storage when registered.
 #pragma once
 
+#include <signal.h>
 #include <sys/types.h>
 
 #include <string>
@@ -26,5 +27,18 @@ void forget(int slot) noexcept;
 
 // The process group of the running child (0: none).
 void set_child(pid_t process_group) noexcept;
+
+// Holds the signals back while it lives: a file created and then registered inside its scope
+// cannot be left behind by a signal that arrives in between (it is delivered at the end).
+class Deferred {
+ public:
+  Deferred() noexcept;
+  ~Deferred();
+  Deferred(const Deferred&) = delete;
+  Deferred& operator=(const Deferred&) = delete;
+
+ private:
+  sigset_t old_{};
+};
 
 }  // namespace gyro::sil::signal_cleanup

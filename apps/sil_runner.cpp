@@ -2,26 +2,58 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 
 #include "body_motion.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "scenario_limits.hpp"
 
 namespace gyro::sil {
 
 namespace {
 
-// Required columns first (kRequiredColumns), then the extras; write_row() follows this order.
-constexpr std::array<std::string_view, 37> kColumns = {
-    "t", "mode", "gimbal_pitch", "gimbal_yaw", "gimbal_pitch_meas", "gimbal_yaw_meas", "theta_rate", "psi_rate",
-    "torque_pitch", "torque_yaw", "flags",
+// What a column holds, for the bound of a row's length (csv_size_bound).
+enum class Kind : std::uint8_t {
+  kReal,        // a number, %.9e
+  kTick,        // k, at most run.ticks
+  kFlags,       // the component's flag word
+  kTruthFlags,  // bits 0..2
+  kFaultBits,   // one bit per FaultKind
+  kStatus,      // a gyro::Status
+  kMode,        // a mode's name
+  kRequest,     // a mode request's name
+};
+
+struct Column {
+  std::string_view name;
+  Kind kind;
+};
+
+// Required columns first (kRequiredColumns), then the extras; run_in() writes them in this order.
+constexpr std::array<Column, 37> kColumnTable = {{
+    {"t", Kind::kReal}, {"mode", Kind::kMode}, {"gimbal_pitch", Kind::kReal}, {"gimbal_yaw", Kind::kReal},
+    {"gimbal_pitch_meas", Kind::kReal}, {"gimbal_yaw_meas", Kind::kReal}, {"theta_rate", Kind::kReal},
+    {"psi_rate", Kind::kReal}, {"torque_pitch", Kind::kReal}, {"torque_yaw", Kind::kReal},
+    {"flags", Kind::kFlags},
     // extras
-    "tick", "gimbal_pitch_pred", "gimbal_yaw_pred", "residual_pitch", "residual_yaw", "theta_rate_true",
-    "psi_rate_true", "rate_cmd_pitch", "rate_cmd_yaw", "slew_cmd_pitch", "slew_cmd_yaw", "request",
-    "nutation_pitch", "nutation_yaw", "nutation_pitch_true", "nutation_yaw_true", "cone_true", "spin_hz",
-    "spin_hz_true", "torque_applied_pitch", "torque_applied_yaw", "body_pitch_rate", "body_yaw_rate",
-    "truth_flags", "active_faults", "step_status"};
+    {"tick", Kind::kTick}, {"gimbal_pitch_pred", Kind::kReal}, {"gimbal_yaw_pred", Kind::kReal},
+    {"residual_pitch", Kind::kReal}, {"residual_yaw", Kind::kReal}, {"theta_rate_true", Kind::kReal},
+    {"psi_rate_true", Kind::kReal}, {"rate_cmd_pitch", Kind::kReal}, {"rate_cmd_yaw", Kind::kReal},
+    {"slew_cmd_pitch", Kind::kReal}, {"slew_cmd_yaw", Kind::kReal}, {"request", Kind::kRequest},
+    {"nutation_pitch", Kind::kReal}, {"nutation_yaw", Kind::kReal}, {"nutation_pitch_true", Kind::kReal},
+    {"nutation_yaw_true", Kind::kReal}, {"cone_true", Kind::kReal}, {"spin_hz", Kind::kReal},
+    {"spin_hz_true", Kind::kReal}, {"torque_applied_pitch", Kind::kReal}, {"torque_applied_yaw", Kind::kReal},
+    {"body_pitch_rate", Kind::kReal}, {"body_yaw_rate", Kind::kReal}, {"truth_flags", Kind::kTruthFlags},
+    {"active_faults", Kind::kFaultBits}, {"step_status", Kind::kStatus},
+}};
+
+constexpr std::array<std::string_view, kColumnTable.size()> kColumns = [] {
+  std::array<std::string_view, kColumnTable.size()> names{};
+  for (std::size_t i = 0; i < names.size(); ++i) names[i] = kColumnTable[i].name;
+  return names;
+}();
 
 static_assert([] {
   for (std::size_t i = 0; i < kRequiredColumns.size(); ++i) {
@@ -128,6 +160,7 @@ GyroComponentConfig<T> cast_config(const GyroComponentConfig<double>& d) {
 
 std::string refusal(const Scenario& s, const std::string& path, const char* who, Status st) {
   std::string r = to_string(st);
+  if (st == Status::kNumericalOverflow) r += ": the rotor's exact step over one tick overflows";
   const auto v = s.values.find(path);
   if (v != s.values.end()) r += " (value " + v->second + ")";
   r += "; refused by ";
@@ -295,6 +328,10 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     csv.integer(static_cast<std::uint64_t>(step));
     csv.end_row();
     if (!csv.ok()) throw RunError("writing the CSV failed at tick " + std::to_string(k));
+    if (csv.bytes() > options.max_csv_bytes) {
+      throw RunError("the CSV passed its limit of " + std::to_string(options.max_csv_bytes) + " bytes at tick " +
+                     std::to_string(k));
+    }
 
     progress.tick(k, t);
   }
@@ -310,6 +347,57 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
 
 std::span<const std::string_view> csv_columns() noexcept { return kColumns; }
 
+namespace {
+
+std::uint64_t decimal_digits(std::uint64_t v) {
+  std::uint64_t n = 1;
+  while (v >= 10) {
+    v /= 10;
+    ++n;
+  }
+  return n;
+}
+
+// The longest name a name function gives over every value of its 8-bit enum (undefined
+// values included: they print as "unknown").
+template <typename Enum, typename NameOf>
+std::uint64_t longest_name(NameOf name_of) {
+  std::size_t n = 0;
+  for (unsigned v = 0; v < 256; ++v) n = std::max(n, std::string_view(name_of(static_cast<Enum>(v))).size());
+  return n;
+}
+
+std::uint64_t max_chars(Kind k, std::uint64_t ticks) {
+  switch (k) {
+    case Kind::kReal: return kMaxScientificChars;
+    case Kind::kTick: return decimal_digits(ticks);
+    case Kind::kFlags: return decimal_digits((std::uint64_t{1} << kComponentFlagCount) - 1u);
+    case Kind::kTruthFlags: return decimal_digits(7);
+    case Kind::kFaultBits: return decimal_digits((std::uint64_t{1} << kFaultKindCount) - 1u);
+    case Kind::kStatus: return decimal_digits(255);
+    case Kind::kMode: return longest_name<GyroMode>([](GyroMode m) { return gyro::to_string(m); });
+    case Kind::kRequest: return longest_name<ModeRequest>([](ModeRequest r) { return request_name(r); });
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::uint64_t csv_row_bytes_bound(std::uint64_t ticks) {
+  std::uint64_t n = kColumnTable.size();  // the commas and the newline
+  for (const Column& c : kColumnTable) n += max_chars(c.kind, ticks);
+  return n;
+}
+
+std::uint64_t csv_size_bound(const Scenario& s) {
+  std::uint64_t header = kColumnTable.size();
+  for (const Column& c : kColumnTable) header += c.name.size();
+  const std::uint64_t rows = s.run.ticks + 1;
+  const std::uint64_t row = csv_row_bytes_bound(s.run.ticks);
+  if (rows > (std::numeric_limits<std::uint64_t>::max() - header) / row) return std::numeric_limits<std::uint64_t>::max();
+  return header + rows * row;
+}
+
 int csv_column(std::string_view name) noexcept {
   for (std::size_t i = 0; i < kColumns.size(); ++i) {
     if (kColumns[i] == name) return static_cast<int>(i) + 1;
@@ -318,6 +406,7 @@ int csv_column(std::string_view name) noexcept {
 }
 
 void check_configs(const Scenario& s) {
+  check_precision_range(s);
   if (s.run.precision == Precision::kFloat) {
     SimulatedGyro<float> stub;
     GyroComponent<float> comp(stub);
@@ -327,6 +416,7 @@ void check_configs(const Scenario& s) {
     GyroComponent<double> comp(stub);
     configure_both<double>(s, stub, comp);
   }
+  check_run_limits(s);
 }
 
 Scenario load_scenario(const std::filesystem::path& path, std::optional<Precision> precision) {

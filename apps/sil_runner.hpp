@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,12 @@ inline constexpr std::array<std::string_view, 11> kRequiredColumns = {
 // 1-based column number of `name` (for gnuplot); 0 if there is no such column.
 [[nodiscard]] int csv_column(std::string_view name) noexcept;
 
+// Upper bounds of a row's length (newline included) in a run of `ticks` ticks, and of the
+// whole CSV of a scenario (header and run.ticks + 1 rows): each column at its widest (a
+// number as "-1.234567890e-308", the flag words at every bit set, the longest name).
+[[nodiscard]] std::uint64_t csv_row_bytes_bound(std::uint64_t ticks);
+[[nodiscard]] std::uint64_t csv_size_bound(const Scenario& s);
+
 // The software failed at run time (not the scenario's fault): the stub or the component
 // refused a call the loop relies on.
 class RunError : public std::runtime_error {
@@ -42,6 +49,9 @@ struct RunOptions {
   bool progress{true};           // progress lines on `progress_out` for runs over a second
   std::FILE* progress_out{stderr};
   std::string label{"gyro_sil"};  // prefix of the progress lines
+  // The run stops (RunError) once the CSV passes this many bytes: a guard behind the check
+  // of csv_size_bound() up front, which should always have refused such a run first.
+  std::uint64_t max_csv_bytes{std::numeric_limits<std::uint64_t>::max()};
 };
 
 struct RunSummary {
@@ -58,8 +68,9 @@ struct RunSummary {
   double wall_s{0};                  // wall-clock time of the loop (not in the CSV)
 };
 
-// Configures a stub and a component with the scenario in its precision: a refusal is a
-// ScenarioError naming the JSON field of what configure() refused.
+// Checks the scenario in its precision: the range of its numbers, then configures a stub and a
+// component with it (a refusal names the JSON field of what configure() refused), then what the
+// run can represent (scenario_limits.hpp). Throws ScenarioError.
 void check_configs(const Scenario& s);
 
 // Reads, parses and checks the scenario; `precision` overrides the file's run.precision.

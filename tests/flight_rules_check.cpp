@@ -6,6 +6,7 @@
 #include "gyro/component_config.hpp"
 #include "gyro/component_types.hpp"
 #include "gyro/error_sources.hpp"
+#include "gyro/exact_step_check.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/persistence.hpp"
 #include "gyro/rotor_parameters.hpp"
@@ -21,6 +22,9 @@ template Status make_transition<double>(const RotorParameters<double>&, double,
                                         RotorTransition<double>&);
 template Status nutation_amplitude<float>(const RotorParameters<float>&, const Vector2<float>&,
                                           const Vector2<float>&, Vector2<float>&);
+template ConfigCheck check_exact_step<float>(float, float, float, float, float, float, const ExactStepFields&);
+template ConfigCheck check_exact_step<double>(double, double, double, double, double, double,
+                                              const ExactStepFields&);
 template Status nutation_amplitude<double>(const RotorParameters<double>&, const Vector2<double>&,
                                            const Vector2<double>&, Vector2<double>&);
 }  // namespace gyro

@@ -59,6 +59,7 @@
 #include <limits>
 
 #include "gyro/attitude.hpp"
+#include "gyro/exact_step_check.hpp"
 #include "gyro/gyro_model.hpp"
 #include "gyro/gyro_port.hpp"
 #include "gyro/noise.hpp"
@@ -167,6 +168,16 @@ template <typename T>
 
 }  // namespace sim_detail
 
+// The emulated rotor's exact step over a tick at the spin it starts with (the largest: the
+// spin only runs down) must be representable, or advance() would refuse every tick; the
+// refusal names the field responsible (gyro/exact_step_check.hpp).
+template <typename T>
+[[nodiscard]] ConfigCheck check_exact_step_at_start(const SimulatedGyroConfig<T>& c) noexcept {
+  constexpr ExactStepFields kFields{"pitch_inertia", "yaw_inertia", "spin_inertia", "friction", "spin_hz", "tick_s"};
+  return check_exact_step(c.gyro.pitch_inertia, c.gyro.yaw_inertia, c.gyro.spin_inertia, c.gyro.friction, c.spin_hz,
+                          c.tick_s, kFields);
+}
+
 template <typename T>
 [[nodiscard]] ConfigCheck check(const SimulatedGyroConfig<T>& c) noexcept {
   using sim_detail::non_negative_finite;
@@ -178,6 +189,8 @@ template <typename T>
   if (!(c.spin_hz > T(0))) return {Status::kOutOfRange, "spin_hz"};
   if (!std::isfinite(c.spin_down_time_constant_s)) return {Status::kNonFiniteInput, "spin_down_time_constant_s"};
   if (c.spin_down_time_constant_s < T(0)) return {Status::kOutOfRange, "spin_down_time_constant_s"};
+  const ConfigCheck step = check_exact_step_at_start(c);
+  if (!step.ok()) return step;
 
   struct NonNegative {
     T value;

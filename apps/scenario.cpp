@@ -580,13 +580,6 @@ std::optional<Precision> parse_precision(std::string_view name) noexcept {
   return std::nullopt;
 }
 
-const char* fault_kind_name(FaultKind kind) noexcept {
-  for (const FaultName& n : kFaultNames) {
-    if (n.kind == kind) return n.name;
-  }
-  return "none";
-}
-
 std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept {
   for (const FaultName& n : kFaultNames) {
     if (name == n.name) return n.kind;

@@ -39,8 +39,7 @@ enum class Precision : std::uint8_t { kDouble, kFloat };
 // "float" or "double"; nullopt otherwise.
 [[nodiscard]] std::optional<Precision> parse_precision(std::string_view name) noexcept;
 
-// The scenario's fault kind names ("stuck_pickoff", ...), FaultKind::kNone excluded.
-[[nodiscard]] const char* fault_kind_name(FaultKind kind) noexcept;
+// The fault kind named as in scenario files (gyro::fault_kind_name), FaultKind::kNone excluded.
 [[nodiscard]] std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept;
 
 [[nodiscard]] const char* request_name(ModeRequest r) noexcept;

@@ -99,9 +99,40 @@ GyroModelConfig<T> cast_config(const GyroModelConfig<double>& d) {
 }
 
 template <typename T>
+GimbalPlantConfig<T> cast_config(const GimbalPlantConfig<double>& d) {
+  const auto c = [](double v) { return static_cast<T>(v); };
+  GimbalPlantConfig<T> g;
+  g.spin_inertia = c(d.spin_inertia);
+  g.rotor_transverse_inertia = c(d.rotor_transverse_inertia);
+  g.inner_gimbal_inertia = d.inner_gimbal_inertia.cast<T>();
+  g.outer_gimbal_inertia = d.outer_gimbal_inertia.cast<T>();
+  g.inner_friction = c(d.inner_friction);
+  g.outer_friction = c(d.outer_friction);
+  g.inner_coulomb_torque = c(d.inner_coulomb_torque);
+  g.outer_coulomb_torque = c(d.outer_coulomb_torque);
+  g.coulomb_rate_scale_rad_s = c(d.coulomb_rate_scale_rad_s);
+  g.spin_drive = d.spin_drive;
+  g.max_spin_hz = c(d.max_spin_hz);
+  g.motor_torque_limit = c(d.motor_torque_limit);
+  g.spin_servo_bandwidth_rad_s = c(d.spin_servo_bandwidth_rad_s);
+  g.spin_down_time_s = c(d.spin_down_time_s);
+  g.mass_unbalance = c(d.mass_unbalance);
+  g.stop_cone_rad = c(d.stop_cone_rad);
+  g.stop_restitution = c(d.stop_restitution);
+  g.torque_axes = d.torque_axes;
+  g.max_body_rate_rad_s = c(d.max_body_rate_rad_s);
+  g.max_torque = c(d.max_torque);
+  g.max_specific_force = c(d.max_specific_force);
+  g.max_substep_phase_rad = c(d.max_substep_phase_rad);
+  return g;
+}
+
+template <typename T>
 SimulatedGyroConfig<T> cast_config(const SimulatedGyroConfig<double>& d) {
   const auto c = [](double v) { return static_cast<T>(v); };
   SimulatedGyroConfig<T> s;
+  s.plant = d.plant;
+  s.gimbal = cast_config<T>(d.gimbal);
   s.gyro = cast_config<T>(d.gyro);
   s.tick_s = c(d.tick_s);
   s.spin_hz = c(d.spin_hz);
@@ -274,14 +305,18 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     in.R_earth_to_body = body.R_earth_to_body().cast<T>();
     in.body_rate_rad_s = Vector3<T>(T(0), static_cast<T>(body.rate_rad_s()(0)), static_cast<T>(body.rate_rad_s()(1)));
     const Status step = comp.step(k, in);
-    if (step != Status::kOk) ++sum.refused_steps;
+    if (step != Status::kOk && step != Status::kInputIgnored) ++sum.refused_steps;
 
     const GyroTelemetry<T>& tm = comp.telemetry();
-    const GyroModel<T>& truth = stub.truth();
+    const Vector2<T> truth_angle = stub.gimbal_angle_rad();
+    const Vector2<T> truth_rate = stub.spin_axis_rate_rad_s();
+    const GyroModel<T>* report = stub.report_model();
+    const Vector2<T> truth_nutation = report != nullptr ? report->nutation_amplitude_rad() : Vector2<T>(Vector2<T>::Zero());
+    const std::uint32_t truth_flags = report != nullptr ? report->flags() : 0u;
     sum.flags_seen |= tm.flags;
     if (stub.at_gimbal_stop()) ++sum.gimbal_stop_hits;
-    sum.max_abs_gimbal_rad = std::max({sum.max_abs_gimbal_rad, std::abs(static_cast<double>(truth.gimbal_pitch_rad())),
-                                       std::abs(static_cast<double>(truth.gimbal_yaw_rad()))});
+    sum.max_abs_gimbal_rad = std::max({sum.max_abs_gimbal_rad, std::abs(static_cast<double>(truth_angle(0))),
+                                       std::abs(static_cast<double>(truth_angle(1)))});
 
     const auto num = [&](T v) {
       const double d = static_cast<double>(v);
@@ -290,8 +325,8 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     };
     const double t = body.time_s();
     csv.number(t).text(to_string(tm.mode));
-    num(truth.gimbal_pitch_rad());
-    num(truth.gimbal_yaw_rad());
+    num(truth_angle(0));
+    num(truth_angle(1));
     num(tm.gimbal_measured_rad(0));
     num(tm.gimbal_measured_rad(1));
     num(tm.precession_rate_rad_s(0));
@@ -305,8 +340,8 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     num(tm.gimbal_predicted_rad(1));
     num(tm.residual_rad(0));
     num(tm.residual_rad(1));
-    num(truth.rate_rad_s()(0));
-    num(truth.rate_rad_s()(1));
+    num(truth_rate(0));
+    num(truth_rate(1));
     num(tm.rate_cmd_rad_s(0));
     num(tm.rate_cmd_rad_s(1));
     num(in.slew_rate_cmd_rad_s(0));
@@ -314,16 +349,16 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     csv.text(request_name(in.request));
     num(tm.nutation_amplitude_rad(0));
     num(tm.nutation_amplitude_rad(1));
-    num(truth.nutation_amplitude_rad()(0));
-    num(truth.nutation_amplitude_rad()(1));
-    num(truth.gimbal_cone_rad());
+    num(truth_nutation(0));
+    num(truth_nutation(1));
+    num(stub.cone_rad());
     num(tm.spin_hz);
     num(stub.spin_hz());
     num(stub.applied_torque()(0));
     num(stub.applied_torque()(1));
     num(in.body_rate_rad_s(1));
     num(in.body_rate_rad_s(2));
-    csv.integer(truth.flags() | (stub.at_gimbal_stop() ? 4u : 0u));
+    csv.integer(truth_flags | (stub.at_gimbal_stop() ? 4u : 0u));
     csv.integer(stub.active_faults());
     csv.integer(static_cast<std::uint64_t>(step));
     csv.end_row();

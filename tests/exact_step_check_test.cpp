@@ -67,6 +67,7 @@ TYPED_TEST(ExactStepCheck, GivenAStubRotorWhoseStepOverflowsWhenConfiguredThenRe
   using T = TypeParam;
   for (const Case<T>& k : overflowing_cases<T>()) {
     SimulatedGyroConfig<T> c = SeekerExample<T>::stub();
+    c.plant = PlantKind::kReport;  // the exact step is the report's plant's
     k.mutate(c.gyro.pitch_inertia, c.gyro.yaw_inertia, c.gyro.spin_inertia, c.gyro.friction, c.spin_hz, c.tick_s);
     const std::string expected = std::string(k.culprit) == "spin"   ? "spin_hz"
                                  : std::string(k.culprit) == "tick" ? "tick_s"
@@ -84,6 +85,7 @@ TYPED_TEST(ExactStepCheck, GivenAStubRotorWhoseStepOverflowsWhenConfiguredThenRe
 // What the check accepts, the stub advances: the largest spins either side of the limit.
 TEST(ExactStepCheck, GivenTheLargestSpinTheStubAcceptsThenItsFirstStepSucceeds) {
   SimulatedGyroConfig<double> c = SeekerExample<double>::stub();
+  c.plant = PlantKind::kReport;  // the exact step is the report's plant's
   double lo = 1e3, hi = 1e300;  // accepted, refused
   for (int i = 0; i < 200; ++i) {
     const double mid = std::sqrt(lo) * std::sqrt(hi);

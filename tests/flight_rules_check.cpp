@@ -6,6 +6,7 @@
 #include "gyro/component_config.hpp"
 #include "gyro/component_types.hpp"
 #include "gyro/error_sources.hpp"
+#include "gyro/gimbal_geometry.hpp"
 #include "gyro/exact_step_check.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/persistence.hpp"
@@ -40,7 +41,11 @@ template class GyroComponent<float>;
 template class GyroComponent<double>;
 }  // namespace gyro
 
+#include "gyro/fault_schedule.hpp"
 #include "gyro/noise.hpp"
+#include "gyro/pickoff_electronics.hpp"
+#include "gyro/report_plant.hpp"
+#include "gyro/torquer_electronics.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro {

@@ -80,7 +80,8 @@ template <typename T>
 }
 
 // The exact-dynamics model the component predicts with: the configured rotor, its limits,
-// no error sources (those are the hardware's, to be caught by the residual).
+// the torquers and bearings on the gimbal axes, no error sources (those are the hardware's,
+// to be caught by the residual).
 template <typename T>
 [[nodiscard]] GyroModelConfig<T> estimator_config(const GyroComponentConfig<T>& c) noexcept {
   GyroModelConfig<T> m;
@@ -92,6 +93,7 @@ template <typename T>
   m.max_pitch_rate_rad_s = c.max_pitch_rate_rad_s;
   m.max_yaw_rate_rad_s = c.max_yaw_rate_rad_s;
   m.small_angle_limit_rad = c.small_angle_limit_rad;
+  m.torquer_axes = TorquerAxes::kGimbal;
   return m;
 }
 

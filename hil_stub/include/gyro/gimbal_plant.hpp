@@ -115,7 +115,7 @@ class GimbalPlant {
     s.yaw_rate_rad_s = initial.gimbal_rate_rad_s(1);
     s.spin_rate_rad_s = T(2) * kPi<T> * initial.spin_hz;
     state_ = s;
-    prm_.spin_drive = config_.spin_drive;
+    prm_ = make_gimbal_parameters(config_);
     drive_.torque.setZero();
     drive_.spin_command_rad_s = s.spin_rate_rad_s;
     body_ = body;
@@ -137,6 +137,19 @@ class GimbalPlant {
     if (drive == SpinDrive::kMotor && !(config_.motor_torque_limit > T(0))) return Status::kOutOfRange;
     prm_.spin_drive = drive;
     drive_.spin_command_rad_s = T(2) * kPi<T> * spin_command_hz;
+    return Status::kOk;
+  }
+
+  // The spin bearing's drag from now on, as a run-down time constant (0: none): a failed
+  // motor whose winding brakes the rotor, say. Refused (kOutOfRange) when its rate 1/tau is
+  // beyond the fastest rate the sub-steps were sized for at configure(). start() restores the
+  // configured drag.
+  [[nodiscard]] Status set_spin_drag(T spin_down_time_s) noexcept {
+    if (!started_) return Status::kNotConfigured;
+    if (!std::isfinite(spin_down_time_s)) return Status::kNonFiniteInput;
+    if (spin_down_time_s < T(0)) return Status::kOutOfRange;
+    if (spin_down_time_s > T(0) && T(1) / spin_down_time_s > gimbal_fastest_rate(config_)) return Status::kOutOfRange;
+    prm_.spin_drag = spin_down_time_s > T(0) ? config_.spin_inertia / spin_down_time_s : T(0);
     return Status::kOk;
   }
 

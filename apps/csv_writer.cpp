@@ -57,6 +57,7 @@ void CsvWriter::end_row() {
 void CsvWriter::flush_line() {
   line_ += '\n';
   if (ok_ && std::fwrite(line_.data(), 1, line_.size(), out_) != line_.size()) ok_ = false;
+  bytes_ += line_.size();
   line_.clear();
   fields_ = 0;
 }

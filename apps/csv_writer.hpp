@@ -15,6 +15,9 @@ namespace gyro::sil {
 // "%.9e" of v without the locale: "-1.234567890e-05", "nan", "inf".
 void append_scientific(std::string& out, double v);
 
+// The longest text append_scientific writes: "-1.234567890e-308".
+inline constexpr std::size_t kMaxScientificChars = 17;
+
 class CsvWriter {
  public:
   // Writes to `out` (not owned; the caller opens and closes it).
@@ -29,6 +32,8 @@ class CsvWriter {
   void end_row();
 
   [[nodiscard]] std::uint64_t rows() const noexcept { return rows_; }
+  // Bytes handed to the stream so far.
+  [[nodiscard]] std::uint64_t bytes() const noexcept { return bytes_; }
   // False once a write failed (disk full, closed pipe).
   [[nodiscard]] bool ok() const noexcept { return ok_; }
 
@@ -42,6 +47,7 @@ class CsvWriter {
   std::string line_;
   std::size_t fields_{0};  // in the current row
   std::uint64_t rows_{0};
+  std::uint64_t bytes_{0};
   bool ok_{true};
 };
 

@@ -2,25 +2,28 @@
 // describes, and writes the time history as CSV (and a plot of the gimbal angles).
 //
 //   gyro_sil SCENARIO.json [-o out.csv] [--plot out.png] [--precision float|double] [--quiet]
+//            [--max-output-bytes N] [--plot-timeout S]
 //
-// Exit status: 0 done; 1 the run failed (software refused a call, output not writable);
-// 2 bad command line or bad scenario (the message names file, field and reason);
-// 3 the CSV was written but the plot failed (gnuplot missing or failing).
-#include <unistd.h>
-
+// Exit status (docs/scenarios.md): 0 done; 1 the run failed (the software refused a call, a
+// non-finite value, an output not writable); 2 refused before anything ran (command line,
+// scenario, output paths, resource limits); 3 the CSV was written but the plot failed. A
+// signal (SIGINT, SIGTERM, SIGHUP, SIGPIPE) removes the temporary files and ends gyro_sil
+// with that signal. Every failure prints one line on standard error, --quiet or not.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
-#include <system_error>
 
 #include "csv_writer.hpp"
+#include "output_files.hpp"
 #include "plot.hpp"
+#include "printable.hpp"
 #include "scenario.hpp"
+#include "signal_cleanup.hpp"
 #include "sil_runner.hpp"
 
 namespace {
@@ -29,14 +32,14 @@ namespace fs = std::filesystem;
 using namespace gyro::sil;
 
 constexpr int kExitRunFailed = 1;
-constexpr int kExitBadInput = 2;
+constexpr int kExitRefused = 2;
 constexpr int kExitPlotFailed = 3;
 
-void make_parent_dirs(const fs::path& p) {
-  const fs::path parent = p.parent_path();
-  if (parent.empty()) return;
-  std::error_code ec;
-  fs::create_directories(parent, ec);  // a failure shows up when the file is opened
+constexpr std::uint64_t kDefaultMaxOutputBytes = std::uint64_t{1} << 30;  // 1 GiB
+
+int fail(int status, const std::string& message) {
+  std::fprintf(stderr, "gyro_sil: %s\n", message.c_str());
+  return status;
 }
 
 PlotRequest gimbal_plot(const fs::path& csv, const fs::path& png, const Scenario& s) {
@@ -69,6 +72,48 @@ PlotRequest gimbal_plot(const fs::path& csv, const fs::path& png, const Scenario
   return r;
 }
 
+// Where the CSV goes while the run writes it: a temporary file beside the final one, a
+// private temporary (a stream output that gnuplot must also read), or the stream itself.
+struct CsvSink {
+  std::optional<TempFile> file;
+  std::FILE* stream{nullptr};  // the stream output (standard output, a device, a FIFO)
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> owned{nullptr, &std::fclose};  // the stream, unless stdout
+  std::string name;            // for messages
+
+  [[nodiscard]] std::FILE* out() const { return file ? file->stream() : stream; }
+
+  // The CSV is complete: closed, ready for gnuplot to read.
+  void finish() {
+    if (file) {
+      file->close();
+    } else if (std::fflush(stream) != 0) {
+      throw OutputError("writing " + name + " failed");
+    }
+  }
+  // Puts it where it belongs: renamed into place, or copied to the stream.
+  void commit() {
+    if (!file) return;
+    if (stream == nullptr) {
+      file->commit();
+    } else {
+      copy_to_stream(file->path(), stream, name);
+    }
+  }
+};
+
+CsvSink open_csv(const OutputTarget& t, bool plotting) {
+  CsvSink sink;
+  sink.name = t.given == "-" ? "standard output" : "\"" + printable(t.given) + "\"";
+  if (t.kind == OutputTarget::Kind::kFile) {
+    sink.file.emplace(TempFile::beside(t.final_path));
+    return sink;
+  }
+  sink.stream = open_stream(t);
+  if (sink.stream != stdout) sink.owned.reset(sink.stream);
+  if (plotting) sink.file.emplace(TempFile::private_file("gyro_sil_csv"));
+  return sink;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -78,6 +123,8 @@ int main(int argc, char** argv) {
   std::string csv_path = "-";
   std::string plot_path;
   std::string precision_name;
+  std::uint64_t max_output_bytes = kDefaultMaxOutputBytes;
+  double plot_timeout_s = kDefaultPlotTimeoutS;
   bool quiet = false;
   app.add_option("scenario", scenario_path, "scenario file (JSON, see docs/scenarios.md)")->required();
   app.add_option("-o,--output", csv_path, "CSV time history to write ('-' = standard output)")
@@ -86,94 +133,106 @@ int main(int argc, char** argv) {
   app.add_option("--precision", precision_name, "run the component and the stub in float or double "
                                                 "(default: the scenario's run.precision)")
       ->check(CLI::IsMember({"float", "double"}));
-  app.add_flag("-q,--quiet", quiet, "no progress or summary on standard error");
+  app.add_option("--max-output-bytes", max_output_bytes,
+                 "refuse a run whose CSV could exceed this size: bytes, or with a unit (kB = 1000 B, KiB, MB, "
+                 "MiB, GB, GiB, ...; default 1GiB)")
+      ->transform(CLI::AsSizeValue(true));
+  app.add_option("--plot-timeout", plot_timeout_s, "seconds gnuplot may take before it is stopped (default 300)")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("-q,--quiet", quiet, "no progress or summary on standard error (failures are still reported)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    return fail(kExitRefused, "bad command line: " + printable(e.what()) + " (see --help)");
   }
+  if (max_output_bytes == 0) return fail(kExitRefused, "bad command line: --max-output-bytes must be > 0");
+  signal_cleanup::install();
+  const std::string shown = printable(scenario_path);
 
   const std::optional<Precision> precision =
       precision_name.empty() ? std::nullopt : parse_precision(precision_name);
 
+  // Everything that can be refused is refused before any output exists.
   Scenario scenario;
+  OutputPlan plan;
   try {
     scenario = load_scenario(scenario_path, precision);
+    plan = plan_outputs(scenario_path, csv_path, plot_path);
   } catch (const ScenarioError& e) {
-    std::fprintf(stderr, "gyro_sil: bad scenario: %s\n", e.what());
-    return kExitBadInput;
+    return fail(kExitRefused, std::string("bad scenario: ") + e.what());
+  } catch (const OutputRefused& e) {
+    return fail(kExitRefused, std::string("refused: ") + e.what());
+  } catch (const OutputError& e) {
+    return fail(kExitRunFailed, e.what());
+  }
+  const std::uint64_t csv_bound = csv_size_bound(scenario);
+  if (csv_bound > max_output_bytes) {
+    return fail(kExitRefused, std::string("refused: ") + ScenarioError(scenario.file, scenario.run.length_field,
+                                                          "the CSV could take up to " + std::to_string(csv_bound) +
+                                                              " bytes (" + std::to_string(scenario.run.ticks + 1) +
+                                                              " rows), more than the limit of " +
+                                                              std::to_string(max_output_bytes) +
+                                                              " (raise it with --max-output-bytes)")
+                                                  .what());
   }
 
-  // With the CSV on standard output a plot needs a file to read: a temporary copy.
-  const bool to_stdout = csv_path == "-";
-  fs::path csv_file = csv_path;
-  if (to_stdout && !plot_path.empty()) {
-    csv_file = fs::temp_directory_path() / ("gyro_sil_" + std::to_string(::getpid()) + ".csv");
-  }
-  std::FILE* out = stdout;
-  if (!to_stdout || !plot_path.empty()) {
-    make_parent_dirs(csv_file);
-    out = std::fopen(csv_file.c_str(), "wb");
-    if (out == nullptr) {
-      std::fprintf(stderr, "gyro_sil: cannot write %s\n", csv_file.c_str());
-      return kExitRunFailed;
-    }
-  }
-
-  RunOptions options;
-  options.progress = !quiet;
-  options.label = "gyro_sil: " + fs::path(scenario_path).filename().string();
-  CsvWriter csv(out);
-  RunSummary sum;
+  const bool plotting = plan.png.has_value();
   try {
-    sum = run_scenario(scenario, csv, options);
-  } catch (const ScenarioError& e) {
-    if (out != stdout) std::fclose(out);
-    std::fprintf(stderr, "gyro_sil: bad scenario: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const RunError& e) {
-    if (out != stdout) std::fclose(out);
-    std::fprintf(stderr, "gyro_sil: %s: run failed: %s\n", scenario_path.c_str(), e.what());
-    return kExitRunFailed;
-  }
-  const bool closed = (out == stdout) ? std::fflush(out) == 0 : std::fclose(out) == 0;
-  if (!closed || !csv.ok()) {
-    std::fprintf(stderr, "gyro_sil: writing %s failed\n", to_stdout ? "standard output" : csv_file.c_str());
-    return kExitRunFailed;
-  }
-
-  if (!quiet) {
-    const std::string flags = flag_names(sum.flags_seen);
-    std::fprintf(stderr,
-                 "gyro_sil: %s: %llu ticks (%.6g s simulated, %s) in %.3f s; final mode %s; flags raised: %s%s%s\n",
-                 scenario_path.c_str(), static_cast<unsigned long long>(sum.ticks),
-                 static_cast<double>(sum.ticks) * scenario.run.tick_s, to_string(sum.precision), sum.wall_s,
-                 gyro::to_string(sum.final_mode), flags.empty() ? "none" : flags.c_str(),
-                 to_stdout ? "" : "; wrote ", to_stdout ? "" : csv_file.c_str());
-    if (sum.nonfinite_values != 0) {
-      std::fprintf(stderr, "gyro_sil: warning: %llu non-finite values in the CSV\n",
-                   static_cast<unsigned long long>(sum.nonfinite_values));
+    CsvSink csv_out = open_csv(plan.csv, plotting);
+    std::optional<TempFile> png_out;
+    if (plotting) {
+      png_out.emplace(TempFile::beside(plan.png->final_path));
+      png_out->close();  // gnuplot writes it
     }
-  }
 
-  int status = sum.nonfinite_values == 0 ? 0 : kExitRunFailed;
-  if (!plot_path.empty()) {
+    RunOptions options;
+    options.progress = !quiet;
+    options.label = "gyro_sil: " + printable(fs::path(scenario_path).filename().string());
+    options.max_csv_bytes = max_output_bytes;
+    CsvWriter csv(csv_out.out());
+    RunSummary sum;
     try {
-      make_parent_dirs(plot_path);
-      plot_csv(gimbal_plot(csv_file, plot_path, scenario));
-      if (!quiet) std::fprintf(stderr, "gyro_sil: plot: %s\n", plot_path.c_str());
-    } catch (const PlotError& e) {
-      std::fprintf(stderr, "gyro_sil: plot failed: %s\n", e.what());
-      status = status == 0 ? kExitPlotFailed : status;
+      sum = run_scenario(scenario, csv, options);
+    } catch (const ScenarioError& e) {
+      return fail(kExitRefused, std::string("bad scenario: ") + e.what());
+    } catch (const RunError& e) {
+      return fail(kExitRunFailed, shown + ": run failed: " + printable(e.what()));
     }
-    if (to_stdout) {
-      std::ifstream in(csv_file, std::ios::binary);
-      std::cout << in.rdbuf();
-      std::cout.flush();
-      std::error_code ec;
-      fs::remove(csv_file, ec);
+    if (!csv.ok()) return fail(kExitRunFailed, "writing " + csv_out.name + " failed");
+    if (sum.nonfinite_values != 0) {
+      return fail(kExitRunFailed, shown + ": run failed: " + std::to_string(sum.nonfinite_values) +
+                                      " non-finite values in the CSV (not written)");
     }
+    csv_out.finish();
+
+    std::string plot_failure;
+    if (plotting) {
+      try {
+        PlotRequest request = gimbal_plot(csv_out.file->path(), png_out->path(), scenario);
+        request.timeout_s = plot_timeout_s;
+        plot_csv(request);
+      } catch (const PlotError& e) {
+        plot_failure = e.what();
+      }
+    }
+    csv_out.commit();
+    if (plotting && plot_failure.empty()) png_out->commit();
+
+    if (!quiet) {
+      const std::string flags = flag_names(sum.flags_seen);
+      const bool to_file = plan.csv.kind == OutputTarget::Kind::kFile;
+      std::fprintf(stderr,
+                   "gyro_sil: %s: %llu ticks (%.6g s simulated, %s) in %.3f s; final mode %s; flags raised: %s%s%s\n",
+                   shown.c_str(), static_cast<unsigned long long>(sum.ticks),
+                   static_cast<double>(sum.ticks) * scenario.run.tick_s, to_string(sum.precision), sum.wall_s,
+                   gyro::to_string(sum.final_mode), flags.empty() ? "none" : flags.c_str(),
+                   to_file ? "; wrote " : "", to_file ? printable(plan.csv.given).c_str() : "");
+      if (plotting && plot_failure.empty()) std::fprintf(stderr, "gyro_sil: plot: %s\n", printable(plot_path).c_str());
+    }
+    if (!plot_failure.empty()) return fail(kExitPlotFailed, "plot failed: " + plot_failure);
+  } catch (const OutputError& e) {
+    return fail(kExitRunFailed, e.what());
   }
-  return status;
+  return 0;
 }

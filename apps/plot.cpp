@@ -1,17 +1,26 @@
 #include "plot.hpp"
 
+#include <fcntl.h>
+#include <pthread.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <string_view>
 #include <system_error>
+#include <thread>
+
+#include "output_files.hpp"
+#include "printable.hpp"
+#include "signal_cleanup.hpp"
 
 extern char** environ;
 
@@ -50,14 +59,69 @@ bool is_executable(const std::filesystem::path& p) {
   return ::stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(p.c_str(), X_OK) == 0;
 }
 
-// Removes the file when it goes out of scope.
-struct TempFile {
-  std::filesystem::path path;
-  ~TempFile() {
-    std::error_code ec;
-    if (!path.empty()) std::filesystem::remove(path, ec);
+// Starts gnuplot on the script: no shell, its own process group (so that it and anything it
+// starts can be killed together), standard input /dev/null, standard output to standard
+// error. The signals gyro_sil cleans up on are blocked from before the spawn until the child
+// is registered for the handler to kill, and restored in the child.
+pid_t spawn_gnuplot(const std::filesystem::path& gnuplot, const std::filesystem::path& script) {
+  sigset_t cleanup_signals, old_mask;
+  sigemptyset(&cleanup_signals);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&cleanup_signals, sig);
+  ::pthread_sigmask(SIG_BLOCK, &cleanup_signals, &old_mask);
+
+  posix_spawnattr_t attr;
+  posix_spawn_file_actions_t actions;
+  ::posix_spawnattr_init(&attr);
+  ::posix_spawn_file_actions_init(&actions);
+  ::posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK);
+  ::posix_spawnattr_setpgroup(&attr, 0);
+  ::posix_spawnattr_setsigmask(&attr, &old_mask);
+  ::posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  ::posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
+
+  const std::string prog = gnuplot.string();
+  std::string arg = script.string();
+  std::string argv0 = "gnuplot";
+  char* argv[] = {argv0.data(), arg.data(), nullptr};
+  pid_t pid = 0;
+  const int rc = ::posix_spawn(&pid, prog.c_str(), &actions, &attr, argv, environ);
+  if (rc == 0) signal_cleanup::set_child(pid);
+  ::posix_spawn_file_actions_destroy(&actions);
+  ::posix_spawnattr_destroy(&attr);
+  ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+  if (rc != 0) throw PlotError("cannot run " + printable(prog) + ": " + std::strerror(rc));
+  return pid;
+}
+
+// Waits for the child, polling; past the time limit kills its process group. Its status.
+int wait_for(pid_t pid, double timeout_s, const std::string& prog) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto limit = std::chrono::duration<double>(timeout_s);
+  auto pause = std::chrono::milliseconds(1);
+  int status = 0;
+  while (true) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) {
+      signal_cleanup::set_child(0);
+      throw PlotError("waiting for gnuplot failed: " + std::string(std::strerror(errno)));
+    }
+    if (std::chrono::steady_clock::now() - start > limit) {
+      ::kill(-pid, SIGKILL);
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      signal_cleanup::set_child(0);
+      std::ostringstream t;
+      t.imbue(std::locale::classic());
+      t << timeout_s;
+      throw PlotError(printable(prog) + " did not finish within " + t.str() + " s (--plot-timeout): stopped");
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::milliseconds(50));
   }
-};
+  signal_cleanup::set_child(0);  // reaped: its process group is gone
+  return status;
+}
 
 }  // namespace
 
@@ -124,51 +188,45 @@ std::string gnuplot_script(const PlotRequest& r) {
   return s.str();
 }
 
-void plot_csv(const PlotRequest& r) { run_gnuplot(gnuplot_script(r), r.png); }
+void plot_csv(const PlotRequest& r) { run_gnuplot(gnuplot_script(r), r.png, r.timeout_s); }
 
-void run_gnuplot(const std::string& script_text, const std::filesystem::path& png) {
+void run_gnuplot(const std::string& script_text, const std::filesystem::path& png, double timeout_s) {
   const std::optional<std::filesystem::path> gnuplot = find_gnuplot();
   if (!gnuplot) {
     throw PlotError("gnuplot not found (looked for " +
                     std::string(std::getenv("GNUPLOT") ? "$GNUPLOT" : "\"gnuplot\" on PATH") +
                     "); install it (Debian: apt-get install gnuplot-nox) or set GNUPLOT to its path");
   }
+  if (!(timeout_s > 0)) throw PlotError("the gnuplot time limit must be > 0 s");
 
-  // The script goes to a private temporary file.
-  std::string tmpl = (std::filesystem::temp_directory_path() / "gyro_sil_plot_XXXXXX.gp").string();
-  const int fd = ::mkstemps(tmpl.data(), 3);
-  if (fd < 0) throw PlotError("cannot create a temporary gnuplot script: " + std::string(std::strerror(errno)));
-  ::close(fd);
-  TempFile script{tmpl};
-  {
-    std::ofstream out(script.path, std::ios::binary | std::ios::trunc);
-    out << script_text;
-    if (!out) throw PlotError("cannot write the gnuplot script " + script.path.string());
+  // The script goes to a private temporary file (removed on return, or by a signal).
+  TempFile script = [] {
+    try {
+      return TempFile::private_file("gyro_sil_plot");
+    } catch (const OutputError& e) {
+      throw PlotError(std::string("cannot create the gnuplot script: ") + e.what());
+    }
+  }();
+  const bool written =
+      std::fwrite(script_text.data(), 1, script_text.size(), script.stream()) == script_text.size();
+  try {
+    script.close();
+  } catch (const OutputError& e) {
+    throw PlotError(e.what());
   }
+  if (!written) throw PlotError("cannot write the gnuplot script " + printable(script.path().string()));
 
-  std::error_code ec;
-  std::filesystem::remove(png, ec);  // so a stale image is never taken for a new one
-
-  const std::string prog = gnuplot->string();
-  std::string arg = script.path.string();
-  std::string argv0 = "gnuplot";
-  char* argv[] = {argv0.data(), arg.data(), nullptr};
-  pid_t pid = 0;
-  const int rc = ::posix_spawn(&pid, prog.c_str(), nullptr, nullptr, argv, environ);
-  if (rc != 0) throw PlotError("cannot run " + prog + ": " + std::strerror(rc));
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw PlotError("waiting for gnuplot failed: " + std::string(std::strerror(errno)));
-  }
+  const pid_t pid = spawn_gnuplot(*gnuplot, script.path());
+  const int status = wait_for(pid, timeout_s, gnuplot->string());
+  const std::string prog = printable(gnuplot->string());
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     throw PlotError(prog + " failed (" +
                     (WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
-                                       : std::string("killed by a signal")) +
-                    ") drawing " + png.string());
+                                       : std::string("killed by signal ") + std::to_string(WTERMSIG(status))) +
+                    ")");
   }
-  if (!std::filesystem::exists(png, ec) || std::filesystem::file_size(png, ec) == 0) {
-    throw PlotError("gnuplot wrote no image to " + png.string());
-  }
+  std::error_code ec;
+  if (std::filesystem::file_size(png, ec) == 0 || ec) throw PlotError(prog + " wrote no image");
 }
 
 }  // namespace gyro::sil

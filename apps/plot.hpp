@@ -11,6 +11,11 @@
 
 namespace gyro::sil {
 
+// How long gnuplot may take by default: it drew the 200,001 rows of a 103 MB CSV in about
+// 10.5 s on the 2-core development machine, so the largest CSV of the default output limit
+// (1 GiB, about 2 million rows) takes about 2 minutes.
+inline constexpr double kDefaultPlotTimeoutS = 300.0;
+
 class PlotError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -30,10 +35,11 @@ struct PlotPanel {
 
 struct PlotRequest {
   std::filesystem::path csv;
-  std::filesystem::path png;
+  std::filesystem::path png;  // written by gnuplot (gyro_sil gives it a temporary file)
   std::string title;  // '\n' starts a new line
   int time_column{1};
   std::vector<PlotPanel> panels;  // stacked top to bottom
+  double timeout_s{kDefaultPlotTimeoutS};  // gnuplot is killed after this long
 };
 
 // The gnuplot program: $GNUPLOT if set, else "gnuplot" on PATH; nullopt if there is none.
@@ -42,10 +48,14 @@ struct PlotRequest {
 // The gnuplot script that draws `r` (exposed for tests).
 [[nodiscard]] std::string gnuplot_script(const PlotRequest& r);
 
-// Writes r.png. Throws PlotError when gnuplot is missing, fails, or leaves no image.
+// Writes r.png with gnuplot: run directly (no shell) in its own process group, with standard
+// input from /dev/null and its standard output sent to standard error (which keeps a CSV on
+// standard output clean), killed (the whole group) after r.timeout_s. Throws PlotError when
+// gnuplot is missing, fails, times out, or leaves no image.
 void plot_csv(const PlotRequest& r);
 
-// Runs gnuplot on `script`, which must draw `png`. Throws PlotError as plot_csv does.
-void run_gnuplot(const std::string& script, const std::filesystem::path& png);
+// Runs gnuplot on `script`, which must draw `png`, as plot_csv does (killed after timeout_s).
+void run_gnuplot(const std::string& script, const std::filesystem::path& png,
+                 double timeout_s = kDefaultPlotTimeoutS);
 
 }  // namespace gyro::sil

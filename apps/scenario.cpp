@@ -1,16 +1,24 @@
 // Scenario JSON -> Scenario, with every refusal naming file, JSON path and reason.
 #include "scenario.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstring>
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <span>
 #include <sstream>
 #include <utility>
+
+#include "printable.hpp"
 
 namespace gyro::sil {
 
@@ -35,10 +43,24 @@ constexpr std::array<FaultName, 7> kFaultNames = {{
     {FaultKind::kSpinMotorFailure, "spin_motor_failure"},
 }};
 
+// A key that is a plain name joins with a dot; any other (empty, or with dots, brackets,
+// spaces, quotes, control characters, non-ASCII) as a JSON string in brackets, so that a path
+// always reads back to one field and prints safely.
+bool plain_key(std::string_view key) {
+  return !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
 std::string join(const std::string& path, std::string_view key) {
   std::string out = path;
-  if (!out.empty()) out += '.';
-  out += key;
+  if (plain_key(key)) {
+    if (!out.empty()) out += '.';
+    out += key;
+  } else {
+    out += '[';
+    out += json(std::string(key)).dump(-1, ' ', true);  // ASCII only: every other character as \uXXXX
+    out += ']';
+  }
   return out;
 }
 std::string at_index(const std::string& path, std::size_t i) {
@@ -149,11 +171,24 @@ class Reader {
     if (v > std::numeric_limits<std::uint32_t>::max()) fail(key, "must fit in 32 bits, got " + std::to_string(v));
     return static_cast<std::uint32_t>(v);
   }
-  [[nodiscard]] std::int64_t integer(std::string_view key, std::int64_t fallback) const {
+  // An integer in [lo, hi], compared as written (an unsigned value above 2^63 - 1 must not
+  // wrap to a negative one); `range` says which values are allowed.
+  [[nodiscard]] std::int64_t integer(std::string_view key, std::int64_t fallback, std::int64_t lo, std::int64_t hi,
+                                     const std::string& range) const {
     if (!has(key)) return fallback;
     const json& v = required(key);
-    if (v.is_number_integer()) return v.get<std::int64_t>();
-    fail(key, std::string("expected an integer, got ") + describe(v));
+    if (!v.is_number_integer()) fail(key, std::string("expected an integer, got ") + describe(v));
+    bool fits = true;
+    std::int64_t value = 0;
+    if (v.is_number_unsigned()) {
+      const std::uint64_t u = v.get<std::uint64_t>();
+      fits = u <= static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+      if (fits) value = static_cast<std::int64_t>(u);
+    } else {
+      value = v.get<std::int64_t>();
+    }
+    if (!fits || value < lo || value > hi) fail(key, "must be " + range + ", got " + v.dump());
+    return value;
   }
 
   [[nodiscard]] bool boolean(std::string_view key) const {
@@ -225,8 +260,21 @@ class Reader {
   std::string path_;
 };
 
+// Times are counted in ticks as integers; beyond 2^53 ticks a double no longer holds every
+// count (and llround would be undefined far beyond).
+constexpr double kMaxTickCount = 9007199254740992.0;  // 2^53
+
 std::uint64_t ticks_of(double t_s, double tick_s) {
   return static_cast<std::uint64_t>(std::llround(t_s / tick_s));
+}
+
+// round(t_s / tick_s) for a time >= 0 read from `key`; refused when it does not fit.
+std::uint64_t ticks_at(const Reader& r, std::string_view key, double t_s, double tick_s) {
+  if (!(t_s / tick_s <= kMaxTickCount)) {
+    r.fail(key, Reader::format(t_s) + " s is more than 2^53 ticks of " + Reader::format(tick_s) +
+                    " s: too far to count in ticks");
+  }
+  return ticks_of(t_s, tick_s);
 }
 
 RunSpec parse_run(const Reader& r) {
@@ -246,6 +294,7 @@ RunSpec parse_run(const Reader& r) {
   if (has_ticks && has_duration) r.fail("duration_s", "give either ticks or duration_s, not both");
   if (!has_ticks && !has_duration) r.fail("ticks", "missing required field (or give duration_s)");
   const char* length_key = has_ticks ? "ticks" : "duration_s";
+  run.length_field = r.path_of(length_key);
   if (has_ticks) {
     run.ticks = r.count("ticks");
   } else {
@@ -299,12 +348,10 @@ void parse_faults(const Reader& g, const RunSpec& run, Scenario& s) {
     ev.kind = *k;
     const double start = f.number("start_s");
     if (start < 0) f.fail("start_s", "must be >= 0, got " + Reader::format(start));
-    ev.start_tick = ticks_of(start, run.tick_s);
+    ev.start_tick = ticks_at(f, "start_s", start, run.tick_s);
     const double duration = f.non_negative("duration_s", 0);
-    ev.duration_ticks = duration > 0 ? std::max<std::uint64_t>(1, ticks_of(duration, run.tick_s)) : 0;
-    const std::int64_t axis = f.integer("axis", -1);
-    if (axis < -1 || axis > 1) f.fail("axis", "must be 0 (pitch), 1 (yaw) or -1 (both), got " + std::to_string(axis));
-    ev.axis = static_cast<int>(axis);
+    ev.duration_ticks = duration > 0 ? std::max<std::uint64_t>(1, ticks_at(f, "duration_s", duration, run.tick_s)) : 0;
+    ev.axis = static_cast<int>(f.integer("axis", -1, -1, 1, "0 (pitch), 1 (yaw) or -1 (both)"));
     const bool needs_magnitude = ev.kind == FaultKind::kBiasJump || ev.kind == FaultKind::kSaturatedTorquer ||
                                  ev.kind == FaultKind::kSpinMotorFailure;
     if (needs_magnitude && !f.has("magnitude")) {
@@ -435,7 +482,7 @@ std::vector<GuidanceEvent> parse_guidance(const Reader& r, const RunSpec& run, c
       e.fail("t_s", "the schedule must be in time order (" + Reader::format(ev.t_s) + " s is before the previous " +
                         Reader::format(out.back().t_s) + " s)");
     }
-    ev.tick = ticks_of(ev.t_s, run.tick_s);
+    ev.tick = ticks_at(e, "t_s", ev.t_s, run.tick_s);
     const std::string req = e.text("request", "none");
     if (req == "none") {
       ev.request = ModeRequest::kNone;
@@ -456,6 +503,63 @@ std::vector<GuidanceEvent> parse_guidance(const Reader& r, const RunSpec& run, c
   return out;
 }
 
+// Refuses, while the document is parsed, what nlohmann's DOM would hide or what no scenario
+// needs: a key repeated in one object (the DOM keeps the last silently) and nesting deeper
+// than kMaxJsonDepth. Follows the JSON path of every container to name the field.
+class ParseChecker {
+ public:
+  explicit ParseChecker(const std::string& file) : file_(file) {}
+
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: open(false); break;
+      case json::parse_event_t::array_start: open(true); break;
+      case json::parse_event_t::key: {
+        Frame& f = frames_.back();
+        const std::string& k = parsed.get_ref<const std::string&>();
+        if (!f.keys.insert(k).second) {
+          throw ScenarioError(file_, join(f.path, k), "duplicate key (a key may appear only once in an object)");
+        }
+        f.key = k;
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::value: element_done(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    std::string path;
+    bool array{false};
+    std::size_t index{0};   // of the next element (arrays)
+    std::string key;        // the last key (objects)
+    std::set<std::string> keys;
+  };
+  void open(bool array) {
+    std::string path;
+    if (!frames_.empty()) {
+      const Frame& parent = frames_.back();
+      path = parent.array ? at_index(parent.path, parent.index) : join(parent.path, parent.key);
+    }
+    if (frames_.size() >= kMaxJsonDepth) {
+      throw ScenarioError(file_, path, "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    }
+    frames_.push_back(Frame{std::move(path), array, 0, {}, {}});
+  }
+  void element_done() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+
+  std::string file_;
+  std::vector<Frame> frames_;
+};
+
 void record_values(const json& j, const std::string& path, std::map<std::string, std::string>& out) {
   if (j.is_object()) {
     for (const auto& item : j.items()) record_values(item.value(), join(path, item.key()), out);
@@ -469,7 +573,7 @@ void record_values(const json& j, const std::string& path, std::map<std::string,
 }  // namespace
 
 ScenarioError::ScenarioError(std::string file, std::string field, std::string reason)
-    : std::runtime_error(file + ": " + field + ": " + reason),
+    : std::runtime_error(printable(file) + ": " + printable(field) + ": " + printable(reason)),
       file_(std::move(file)),
       field_(std::move(field)),
       reason_(std::move(reason)) {}
@@ -478,13 +582,6 @@ std::optional<Precision> parse_precision(std::string_view name) noexcept {
   if (name == "double") return Precision::kDouble;
   if (name == "float") return Precision::kFloat;
   return std::nullopt;
-}
-
-const char* fault_kind_name(FaultKind kind) noexcept {
-  for (const FaultName& n : kFaultNames) {
-    if (n.kind == kind) return n.name;
-  }
-  return "none";
 }
 
 std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept {
@@ -506,7 +603,7 @@ const char* request_name(ModeRequest r) noexcept {
 Scenario parse_scenario(std::string_view json_text, const std::string& file) {
   json doc;
   try {
-    doc = json::parse(json_text.begin(), json_text.end(), nullptr, true, false);
+    doc = json::parse(json_text.begin(), json_text.end(), ParseChecker(file), true, false);
   } catch (const json::exception& e) {
     std::string what = e.what();
     if (!what.empty() && what.front() == '[') {
@@ -543,14 +640,46 @@ Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& f
   return s;
 }
 
+namespace {
+
+struct Descriptor {
+  int fd;
+  ~Descriptor() { ::close(fd); }
+};
+
+// At most kMaxScenarioBytes of the file: its size is checked before reading when it has one,
+// and reading stops one byte past the limit otherwise (/dev/zero, a pipe).
+std::string read_bounded(const std::string& name) {
+  const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    throw ScenarioError(name, "(file)", std::string("cannot open the file for reading: ") + std::strerror(errno));
+  }
+  const Descriptor closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw ScenarioError(name, "(file)", std::string("cannot stat the file: ") + std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throw ScenarioError(name, "(file)", "is a directory, not a scenario file");
+  const std::string limit = "the limit of " + std::to_string(kMaxScenarioBytes) + " bytes for a scenario";
+  if (S_ISREG(st.st_mode) && static_cast<std::uint64_t>(st.st_size) > kMaxScenarioBytes) {
+    throw ScenarioError(name, "(file)", "the file has " + std::to_string(st.st_size) + " bytes, more than " + limit);
+  }
+  std::string text;
+  std::array<char, 65536> buf{};
+  while (true) {
+    const ::ssize_t n = ::read(fd, buf.data(), buf.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw ScenarioError(name, "(file)", std::string("read error: ") + std::strerror(errno));
+    if (n == 0) break;
+    text.append(buf.data(), static_cast<std::size_t>(n));
+    if (text.size() > kMaxScenarioBytes) throw ScenarioError(name, "(file)", "gave more than " + limit + " (stopped reading)");
+  }
+  return text;
+}
+
+}  // namespace
+
 Scenario read_scenario(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(name, "(file)", "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ScenarioError(name, "(file)", "read error");
-  return parse_scenario(text.str(), name);
+  return parse_scenario(read_bounded(name), name);
 }
 
 std::string component_field_path(const Scenario& s, std::string_view field) {
@@ -576,13 +705,13 @@ std::string gyro_field_path(const Scenario& s, std::string_view field) {
   for (const Section& sec : kSections) {
     if (sec.field == field) return join(join("gyro", sec.section), field);
   }
-  std::string f(field);
+  std::string f(field);  // a path below gyro ("pickoff.lsb_rad", "faults[1].axis"): appended as is
   const std::string ticks = ".duration_ticks";
   if (f.rfind("faults[", 0) == 0 && f.size() > ticks.size() &&
       f.compare(f.size() - ticks.size(), ticks.size(), ticks) == 0) {
     f.replace(f.size() - ticks.size(), ticks.size(), ".duration_s");
   }
-  return join("gyro", f);
+  return "gyro." + f;
 }
 
 }  // namespace gyro::sil

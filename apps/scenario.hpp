@@ -3,7 +3,10 @@
 // field. The schema is documented in docs/scenarios.md.
 //
 // Every refusal is a ScenarioError naming the file, the field as a JSON path
-// ("gyro.rotor.pitch_inertia", "guidance.schedule[2].t_s") and the reason.
+// ("gyro.rotor.pitch_inertia", "guidance.schedule[2].t_s"; a key that is not a plain name is
+// written as a JSON string in brackets: body["rate\u0001"]) and the reason. A refusal that is
+// not about one field names a pseudo-field: "(file)" (cannot be read), "(document)" (not
+// JSON), "(root)" (the document itself).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +25,13 @@
 
 namespace gyro::sil {
 
+// The largest scenario file read (1 MiB; the shipped ones are about 2 KB). Larger files, and
+// devices or pipes that keep giving bytes, are refused after reading at most this much.
+inline constexpr std::uint64_t kMaxScenarioBytes = 1u << 20;
+
+// Deepest nesting of arrays and objects accepted (the schema needs 4).
+inline constexpr std::size_t kMaxJsonDepth = 16;
+
 enum class Precision : std::uint8_t { kDouble, kFloat };
 
 [[nodiscard]] constexpr const char* to_string(Precision p) noexcept {
@@ -30,8 +40,7 @@ enum class Precision : std::uint8_t { kDouble, kFloat };
 // "float" or "double"; nullopt otherwise.
 [[nodiscard]] std::optional<Precision> parse_precision(std::string_view name) noexcept;
 
-// The scenario's fault kind names ("stuck_pickoff", ...), FaultKind::kNone excluded.
-[[nodiscard]] const char* fault_kind_name(FaultKind kind) noexcept;
+// The fault kind named as in scenario files (gyro::fault_kind_name), FaultKind::kNone excluded.
 [[nodiscard]] std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept;
 
 [[nodiscard]] const char* request_name(ModeRequest r) noexcept;
@@ -39,6 +48,8 @@ enum class Precision : std::uint8_t { kDouble, kFloat };
 // Levenshtein distance (the "did you mean" of unknown keys).
 [[nodiscard]] std::size_t edit_distance(std::string_view a, std::string_view b);
 
+// what() is "file: field: reason" with control characters escaped (printable()); file(),
+// field() and reason() are as given.
 class ScenarioError : public std::runtime_error {
  public:
   ScenarioError(std::string file, std::string field, std::string reason);
@@ -63,6 +74,7 @@ struct RunSpec {
   double tick_s{0};
   std::string tick_field{"run.tick_s"};   // the key the tick came from (tick_s or rate_hz)
   std::uint64_t ticks{0};                 // number of ticks after tick 0 (rows = ticks + 1)
+  std::string length_field{"run.ticks"};  // the key the length came from (ticks or duration_s)
   Precision precision{Precision::kDouble};
 };
 
@@ -86,7 +98,9 @@ struct Scenario {
 // The same from a parsed document (gyro_campaign's dispersed scenarios).
 [[nodiscard]] Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& file);
 
-// Reads the file and parses it (unreadable file: ScenarioError with field "(file)").
+// Reads the file and parses it. A file that cannot be opened or read, a directory, or more
+// than kMaxScenarioBytes is a ScenarioError with field "(file)"; reading is bounded even for
+// /dev/zero or a pipe.
 [[nodiscard]] Scenario read_scenario(const std::filesystem::path& path);
 
 // The JSON path of a field the component's configure() named ("max_torque" ->

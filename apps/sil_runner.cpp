@@ -3,68 +3,97 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
 #include "body_motion.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "scenario_limits.hpp"
 
 namespace gyro::sil {
 
 namespace {
 
-// The CSV's columns, in order, each with its value: f(name, value) where value is a double,
-// an unsigned integer or a name. The one list the header, the rows and the finiteness count
-// are made from. The required columns (kRequiredColumns) come first.
+// What a column holds, for the bound of a row's length (csv_size_bound).
+enum class Kind : std::uint8_t {
+  kReal,        // a number, %.9e
+  kTick,        // k, at most run.ticks
+  kFlags,       // the component's flag word
+  kTruthFlags,  // bits 0..2
+  kFaultBits,   // one bit per FaultKind
+  kStatus,      // a gyro::Status
+  kMode,        // a mode's name
+  kRequest,     // a mode request's name
+};
+
+struct Column {
+  std::string_view name;
+  Kind kind;
+};
+
+// The CSV's columns, in order, each with what it holds and its value: f(column, value) where
+// value is a double, an unsigned integer or a name. The one list the header, the rows, the
+// bound of a row's length and the finiteness count are made from. The required columns
+// (kRequiredColumns) come first.
 template <typename F>
 void for_each_column(const TickRecord& r, F&& f) {
   const auto u = [](std::uint32_t v) { return static_cast<std::uint64_t>(v); };
-  f("t", r.t_s);
-  f("mode", to_string(r.mode));
-  f("gimbal_pitch", r.gimbal_true_rad(0));
-  f("gimbal_yaw", r.gimbal_true_rad(1));
-  f("gimbal_pitch_meas", r.gimbal_measured_rad(0));
-  f("gimbal_yaw_meas", r.gimbal_measured_rad(1));
-  f("theta_rate", r.rate_est_rad_s(0));
-  f("psi_rate", r.rate_est_rad_s(1));
-  f("torque_pitch", r.torque_cmd(0));
-  f("torque_yaw", r.torque_cmd(1));
-  f("flags", u(r.flags));
+  f(Column{"t", Kind::kReal}, r.t_s);
+  f(Column{"mode", Kind::kMode}, to_string(r.mode));
+  f(Column{"gimbal_pitch", Kind::kReal}, r.gimbal_true_rad(0));
+  f(Column{"gimbal_yaw", Kind::kReal}, r.gimbal_true_rad(1));
+  f(Column{"gimbal_pitch_meas", Kind::kReal}, r.gimbal_measured_rad(0));
+  f(Column{"gimbal_yaw_meas", Kind::kReal}, r.gimbal_measured_rad(1));
+  f(Column{"theta_rate", Kind::kReal}, r.rate_est_rad_s(0));
+  f(Column{"psi_rate", Kind::kReal}, r.rate_est_rad_s(1));
+  f(Column{"torque_pitch", Kind::kReal}, r.torque_cmd(0));
+  f(Column{"torque_yaw", Kind::kReal}, r.torque_cmd(1));
+  f(Column{"flags", Kind::kFlags}, u(r.flags));
   // extras
-  f("tick", r.tick);
-  f("gimbal_pitch_pred", r.gimbal_predicted_rad(0));
-  f("gimbal_yaw_pred", r.gimbal_predicted_rad(1));
-  f("residual_pitch", r.residual_rad(0));
-  f("residual_yaw", r.residual_rad(1));
-  f("theta_rate_true", r.rate_true_rad_s(0));
-  f("psi_rate_true", r.rate_true_rad_s(1));
-  f("rate_cmd_pitch", r.rate_cmd_rad_s(0));
-  f("rate_cmd_yaw", r.rate_cmd_rad_s(1));
-  f("slew_cmd_pitch", r.slew_cmd_rad_s(0));
-  f("slew_cmd_yaw", r.slew_cmd_rad_s(1));
-  f("request", request_name(r.request));
-  f("nutation_pitch", r.nutation_est_rad(0));
-  f("nutation_yaw", r.nutation_est_rad(1));
-  f("nutation_pitch_true", r.nutation_true_rad(0));
-  f("nutation_yaw_true", r.nutation_true_rad(1));
-  f("cone_true", r.cone_true_rad);
-  f("spin_hz", r.spin_hz);
-  f("spin_hz_true", r.spin_hz_true);
-  f("torque_applied_pitch", r.torque_applied(0));
-  f("torque_applied_yaw", r.torque_applied(1));
-  f("body_pitch_rate", r.body_rate_rad_s(0));
-  f("body_yaw_rate", r.body_rate_rad_s(1));
-  f("truth_flags", u(r.truth_flags));
-  f("active_faults", u(r.active_faults));
-  f("step_status", static_cast<std::uint64_t>(r.step_status));
+  f(Column{"tick", Kind::kTick}, r.tick);
+  f(Column{"gimbal_pitch_pred", Kind::kReal}, r.gimbal_predicted_rad(0));
+  f(Column{"gimbal_yaw_pred", Kind::kReal}, r.gimbal_predicted_rad(1));
+  f(Column{"residual_pitch", Kind::kReal}, r.residual_rad(0));
+  f(Column{"residual_yaw", Kind::kReal}, r.residual_rad(1));
+  f(Column{"theta_rate_true", Kind::kReal}, r.rate_true_rad_s(0));
+  f(Column{"psi_rate_true", Kind::kReal}, r.rate_true_rad_s(1));
+  f(Column{"rate_cmd_pitch", Kind::kReal}, r.rate_cmd_rad_s(0));
+  f(Column{"rate_cmd_yaw", Kind::kReal}, r.rate_cmd_rad_s(1));
+  f(Column{"slew_cmd_pitch", Kind::kReal}, r.slew_cmd_rad_s(0));
+  f(Column{"slew_cmd_yaw", Kind::kReal}, r.slew_cmd_rad_s(1));
+  f(Column{"request", Kind::kRequest}, request_name(r.request));
+  f(Column{"nutation_pitch", Kind::kReal}, r.nutation_est_rad(0));
+  f(Column{"nutation_yaw", Kind::kReal}, r.nutation_est_rad(1));
+  f(Column{"nutation_pitch_true", Kind::kReal}, r.nutation_true_rad(0));
+  f(Column{"nutation_yaw_true", Kind::kReal}, r.nutation_true_rad(1));
+  f(Column{"cone_true", Kind::kReal}, r.cone_true_rad);
+  f(Column{"spin_hz", Kind::kReal}, r.spin_hz);
+  f(Column{"spin_hz_true", Kind::kReal}, r.spin_hz_true);
+  f(Column{"torque_applied_pitch", Kind::kReal}, r.torque_applied(0));
+  f(Column{"torque_applied_yaw", Kind::kReal}, r.torque_applied(1));
+  f(Column{"body_pitch_rate", Kind::kReal}, r.body_rate_rad_s(0));
+  f(Column{"body_yaw_rate", Kind::kReal}, r.body_rate_rad_s(1));
+  f(Column{"truth_flags", Kind::kTruthFlags}, u(r.truth_flags));
+  f(Column{"active_faults", Kind::kFaultBits}, u(r.active_faults));
+  f(Column{"step_status", Kind::kStatus}, static_cast<std::uint64_t>(r.step_status));
 }
 
-// The names, once (sil_app_test checks the required ones lead, in order).
+// The columns, once (sil_app_test checks the required ones lead, in order).
+const std::vector<Column>& column_table() {
+  static const std::vector<Column> table = [] {
+    std::vector<Column> t;
+    for_each_column(TickRecord{}, [&](const Column& c, const auto&) { t.push_back(c); });
+    return t;
+  }();
+  return table;
+}
+
 const std::vector<std::string_view>& columns() {
   static const std::vector<std::string_view> names = [] {
     std::vector<std::string_view> n;
-    for_each_column(TickRecord{}, [&](std::string_view name, const auto&) { n.push_back(name); });
+    for (const Column& c : column_table()) n.push_back(c.name);
     return n;
   }();
   return names;
@@ -72,14 +101,13 @@ const std::vector<std::string_view>& columns() {
 
 std::uint64_t nonfinite_count(const TickRecord& r) {
   std::uint64_t n = 0;
-  for_each_column(r, [&](std::string_view, const auto& v) {
+  for_each_column(r, [&](const Column&, const auto& v) {
     if constexpr (std::is_same_v<std::decay_t<decltype(v)>, double>) {
       if (!std::isfinite(v)) ++n;
     }
   });
   return n;
 }
-
 
 template <typename T>
 Vector2<T> v2(const Eigen::Vector2d& v) {
@@ -117,9 +145,40 @@ GyroModelConfig<T> cast_config(const GyroModelConfig<double>& d) {
 }
 
 template <typename T>
+GimbalPlantConfig<T> cast_config(const GimbalPlantConfig<double>& d) {
+  const auto c = [](double v) { return static_cast<T>(v); };
+  GimbalPlantConfig<T> g;
+  g.spin_inertia = c(d.spin_inertia);
+  g.rotor_transverse_inertia = c(d.rotor_transverse_inertia);
+  g.inner_gimbal_inertia = d.inner_gimbal_inertia.cast<T>();
+  g.outer_gimbal_inertia = d.outer_gimbal_inertia.cast<T>();
+  g.inner_friction = c(d.inner_friction);
+  g.outer_friction = c(d.outer_friction);
+  g.inner_coulomb_torque = c(d.inner_coulomb_torque);
+  g.outer_coulomb_torque = c(d.outer_coulomb_torque);
+  g.coulomb_rate_scale_rad_s = c(d.coulomb_rate_scale_rad_s);
+  g.spin_drive = d.spin_drive;
+  g.max_spin_hz = c(d.max_spin_hz);
+  g.motor_torque_limit = c(d.motor_torque_limit);
+  g.spin_servo_bandwidth_rad_s = c(d.spin_servo_bandwidth_rad_s);
+  g.spin_down_time_s = c(d.spin_down_time_s);
+  g.mass_unbalance = c(d.mass_unbalance);
+  g.stop_cone_rad = c(d.stop_cone_rad);
+  g.stop_restitution = c(d.stop_restitution);
+  g.torque_axes = d.torque_axes;
+  g.max_body_rate_rad_s = c(d.max_body_rate_rad_s);
+  g.max_torque = c(d.max_torque);
+  g.max_specific_force = c(d.max_specific_force);
+  g.max_substep_phase_rad = c(d.max_substep_phase_rad);
+  return g;
+}
+
+template <typename T>
 SimulatedGyroConfig<T> cast_config(const SimulatedGyroConfig<double>& d) {
   const auto c = [](double v) { return static_cast<T>(v); };
   SimulatedGyroConfig<T> s;
+  s.plant = d.plant;
+  s.gimbal = cast_config<T>(d.gimbal);
   s.gyro = cast_config<T>(d.gyro);
   s.tick_s = c(d.tick_s);
   s.spin_hz = c(d.spin_hz);
@@ -178,6 +237,7 @@ GyroComponentConfig<T> cast_config(const GyroComponentConfig<double>& d) {
 
 std::string refusal(const Scenario& s, const std::string& path, const char* who, Status st) {
   std::string r = to_string(st);
+  if (st == Status::kNumericalOverflow) r += ": the rotor's exact step over one tick overflows";
   const auto v = s.values.find(path);
   if (v != s.values.end()) r += " (value " + v->second + ")";
   r += "; refused by ";
@@ -292,41 +352,44 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     in.R_earth_to_body = body.R_earth_to_body().cast<T>();
     in.body_rate_rad_s = Vector3<T>(T(0), static_cast<T>(body.rate_rad_s()(0)), static_cast<T>(body.rate_rad_s()(1)));
     const Status step = comp.step(k, in);
-    if (step != Status::kOk) ++sum.refused_steps;
+    if (step != Status::kOk && step != Status::kInputIgnored) ++sum.refused_steps;
 
     const GyroTelemetry<T>& tm = comp.telemetry();
-    const GyroModel<T>& truth = stub.truth();
+    const Vector2<T> truth_angle = stub.gimbal_angle_rad();
+    const Vector2<T> truth_rate = stub.spin_axis_rate_rad_s();
+    const GyroModel<T>* report = stub.report_model();
+    const Vector2<T> truth_nutation = report != nullptr ? report->nutation_amplitude_rad() : Vector2<T>(Vector2<T>::Zero());
+    const std::uint32_t truth_flags = report != nullptr ? report->flags() : 0u;
     sum.flags_seen |= tm.flags;
     if (stub.at_gimbal_stop()) ++sum.gimbal_stop_hits;
-    sum.max_abs_gimbal_rad = std::max({sum.max_abs_gimbal_rad, std::abs(static_cast<double>(truth.gimbal_pitch_rad())),
-                                       std::abs(static_cast<double>(truth.gimbal_yaw_rad()))});
+    sum.max_abs_gimbal_rad = std::max({sum.max_abs_gimbal_rad, std::abs(static_cast<double>(truth_angle(0))),
+                                       std::abs(static_cast<double>(truth_angle(1)))});
 
     rec.tick = k;
     rec.t_s = body.time_s();
     rec.mode = tm.mode;
     rec.request = in.request;
     rec.flags = tm.flags;
-    rec.gimbal_true_rad = Eigen::Vector2d(static_cast<double>(truth.gimbal_pitch_rad()),
-                                          static_cast<double>(truth.gimbal_yaw_rad()));
+    rec.gimbal_true_rad = truth_angle.template cast<double>();
     rec.gimbal_measured_rad = tm.gimbal_measured_rad.template cast<double>();
     rec.gimbal_predicted_rad = tm.gimbal_predicted_rad.template cast<double>();
     rec.residual_rad = tm.residual_rad.template cast<double>();
     rec.rate_est_rad_s = tm.precession_rate_rad_s.template cast<double>();
-    rec.rate_true_rad_s = truth.rate_rad_s().template cast<double>();
+    rec.rate_true_rad_s = truth_rate.template cast<double>();
     rec.rate_cmd_rad_s = tm.rate_cmd_rad_s.template cast<double>();
     // What guidance and the body sent, in double (the component received them in T). Read
     // back from `in` in a float run, GCC 12.2's SLP vectoriser at -O2 drops the float rounding.
     rec.slew_cmd_rad_s = guidance.slew();
     rec.torque_cmd = tm.torque_cmd.template cast<double>();
     rec.nutation_est_rad = tm.nutation_amplitude_rad.template cast<double>();
-    rec.nutation_true_rad = truth.nutation_amplitude_rad().template cast<double>();
-    rec.cone_true_rad = static_cast<double>(truth.gimbal_cone_rad());
+    rec.nutation_true_rad = truth_nutation.template cast<double>();
+    rec.cone_true_rad = static_cast<double>(stub.cone_rad());
     rec.spin_hz = static_cast<double>(tm.spin_hz);
     rec.spin_hz_true = static_cast<double>(stub.spin_hz());
     rec.torque_applied = stub.applied_torque().template cast<double>();
     rec.body_rate_rad_s = body.rate_rad_s();
     rec.at_gimbal_stop = stub.at_gimbal_stop();
-    rec.truth_flags = truth.flags() | (rec.at_gimbal_stop ? 4u : 0u);
+    rec.truth_flags = truth_flags | (rec.at_gimbal_stop ? 4u : 0u);
     rec.active_faults = stub.active_faults();
     rec.step_status = step;
     sum.nonfinite_values += nonfinite_count(rec);
@@ -346,6 +409,57 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
 
 std::span<const std::string_view> csv_columns() noexcept { return columns(); }
 
+namespace {
+
+std::uint64_t decimal_digits(std::uint64_t v) {
+  std::uint64_t n = 1;
+  while (v >= 10) {
+    v /= 10;
+    ++n;
+  }
+  return n;
+}
+
+// The longest name a name function gives over every value of its 8-bit enum (undefined
+// values included: they print as "unknown").
+template <typename Enum, typename NameOf>
+std::uint64_t longest_name(NameOf name_of) {
+  std::size_t n = 0;
+  for (unsigned v = 0; v < 256; ++v) n = std::max(n, std::string_view(name_of(static_cast<Enum>(v))).size());
+  return n;
+}
+
+std::uint64_t max_chars(Kind k, std::uint64_t ticks) {
+  switch (k) {
+    case Kind::kReal: return kMaxScientificChars;
+    case Kind::kTick: return decimal_digits(ticks);
+    case Kind::kFlags: return decimal_digits((std::uint64_t{1} << kComponentFlagCount) - 1u);
+    case Kind::kTruthFlags: return decimal_digits(7);
+    case Kind::kFaultBits: return decimal_digits((std::uint64_t{1} << kFaultKindCount) - 1u);
+    case Kind::kStatus: return decimal_digits(255);
+    case Kind::kMode: return longest_name<GyroMode>([](GyroMode m) { return gyro::to_string(m); });
+    case Kind::kRequest: return longest_name<ModeRequest>([](ModeRequest r) { return request_name(r); });
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::uint64_t csv_row_bytes_bound(std::uint64_t ticks) {
+  std::uint64_t n = column_table().size();  // the commas and the newline
+  for (const Column& c : column_table()) n += max_chars(c.kind, ticks);
+  return n;
+}
+
+std::uint64_t csv_size_bound(const Scenario& s) {
+  std::uint64_t header = column_table().size();
+  for (const Column& c : column_table()) header += c.name.size();
+  const std::uint64_t rows = s.run.ticks + 1;
+  const std::uint64_t row = csv_row_bytes_bound(s.run.ticks);
+  if (rows > (std::numeric_limits<std::uint64_t>::max() - header) / row) return std::numeric_limits<std::uint64_t>::max();
+  return header + rows * row;
+}
+
 int csv_column(std::string_view name) noexcept {
   const std::vector<std::string_view>& c = columns();
   for (std::size_t i = 0; i < c.size(); ++i) {
@@ -357,7 +471,7 @@ int csv_column(std::string_view name) noexcept {
 void CsvObserver::on_start() { csv_.header(csv_columns()); }
 
 void CsvObserver::on_tick(const TickRecord& r) {
-  for_each_column(r, [&](std::string_view, const auto& v) {
+  for_each_column(r, [&](const Column&, const auto& v) {
     using V = std::decay_t<decltype(v)>;
     if constexpr (std::is_same_v<V, double>) {
       csv_.number(v);
@@ -369,9 +483,14 @@ void CsvObserver::on_tick(const TickRecord& r) {
   });
   csv_.end_row();
   if (!csv_.ok()) throw RunError("writing the CSV failed at tick " + std::to_string(r.tick));
+  if (csv_.bytes() > max_bytes_) {
+    throw RunError("the CSV passed its limit of " + std::to_string(max_bytes_) + " bytes at tick " +
+                   std::to_string(r.tick));
+  }
 }
 
 void check_configs(const Scenario& s) {
+  check_precision_range(s);
   if (s.run.precision == Precision::kFloat) {
     SimulatedGyro<float> stub;
     GyroComponent<float> comp(stub);
@@ -381,6 +500,7 @@ void check_configs(const Scenario& s) {
     GyroComponent<double> comp(stub);
     configure_both<double>(s, stub, comp);
   }
+  check_run_limits(s);
 }
 
 Scenario load_scenario(const std::filesystem::path& path, std::optional<Precision> precision) {
@@ -396,7 +516,7 @@ RunSummary run_scenario(const Scenario& s, TickObserver& observer, const RunOpti
 }
 
 RunSummary run_scenario(const Scenario& s, CsvWriter& csv, const RunOptions& options) {
-  CsvObserver observer(csv);
+  CsvObserver observer(csv, options.max_csv_bytes);
   return run_scenario(s, observer, options);
 }
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -50,7 +51,7 @@ struct TickRecord {
   double spin_hz_true{0};
   Eigen::Vector2d torque_applied{Eigen::Vector2d::Zero()};
   Eigen::Vector2d body_rate_rad_s{Eigen::Vector2d::Zero()};
-  std::uint32_t truth_flags{0};                 // bit 0 gimbal limit, 1 small angle, 2 at the stop
+  std::uint32_t truth_flags{0};  // bit 2 at the stop; bits 0-1 the report plant's gimbal-limit, small-angle flags
   bool at_gimbal_stop{false};
   std::uint32_t active_faults{0};               // the stub's, bit (1 << FaultKind)
   Status step_status{Status::kOk};
@@ -70,16 +71,24 @@ class TickObserver {
 // 1-based column number of `name` (for gnuplot); 0 if there is no such column.
 [[nodiscard]] int csv_column(std::string_view name) noexcept;
 
+// Upper bounds of a row's length (newline included) in a run of `ticks` ticks, and of the
+// whole CSV of a scenario (header and run.ticks + 1 rows): each column at its widest (a
+// number as "-1.234567890e-308", the flag words at every bit set, the longest name).
+[[nodiscard]] std::uint64_t csv_row_bytes_bound(std::uint64_t ticks);
+[[nodiscard]] std::uint64_t csv_size_bound(const Scenario& s);
+
 // The gyro_sil CSV as an observer: the header at the start, one row per tick. Throws
-// RunError when a write fails.
+// RunError when a write fails or the CSV passes max_bytes.
 class CsvObserver final : public TickObserver {
  public:
-  explicit CsvObserver(CsvWriter& csv) noexcept : csv_(csv) {}
+  explicit CsvObserver(CsvWriter& csv, std::uint64_t max_bytes = std::numeric_limits<std::uint64_t>::max()) noexcept
+      : csv_(csv), max_bytes_(max_bytes) {}
   void on_start() override;
   void on_tick(const TickRecord& r) override;
 
  private:
   CsvWriter& csv_;
+  std::uint64_t max_bytes_;
 };
 
 // The software failed at run time (not the scenario's fault): the stub or the component
@@ -93,6 +102,9 @@ struct RunOptions {
   bool progress{true};           // progress lines on `progress_out` for runs over a second
   std::FILE* progress_out{stderr};
   std::string label{"gyro_sil"};  // prefix of the progress lines
+  // The run stops (RunError) once the CSV passes this many bytes: a guard behind the check
+  // of csv_size_bound() up front, which should always have refused such a run first.
+  std::uint64_t max_csv_bytes{std::numeric_limits<std::uint64_t>::max()};
 };
 
 struct RunSummary {
@@ -102,15 +114,16 @@ struct RunSummary {
   GyroMode final_mode{GyroMode::kIdle};
   std::uint32_t flags_seen{0};       // OR of the component's flags over the run
   std::array<std::uint32_t, kComponentFlagCount> counters{};  // the component's, at the end
-  std::uint64_t refused_steps{0};    // component.step() calls that did not return kOk
+  std::uint64_t refused_steps{0};    // component.step() calls that returned neither kOk nor kInputIgnored
   std::uint64_t nonfinite_values{0}; // NaN or infinite numbers among the CSV's columns
   std::uint64_t gimbal_stop_hits{0}; // ticks in which the stub's gimbal hit its stop
   double max_abs_gimbal_rad{0};      // largest true gimbal angle, either axis
   double wall_s{0};                  // wall-clock time of the loop (not in the CSV)
 };
 
-// Configures a stub and a component with the scenario in its precision: a refusal is a
-// ScenarioError naming the JSON field of what configure() refused.
+// Checks the scenario in its precision: the range of its numbers, then configures a stub and a
+// component with it (a refusal names the JSON field of what configure() refused), then what the
+// run can represent (scenario_limits.hpp). Throws ScenarioError.
 void check_configs(const Scenario& s);
 
 // Reads, parses and checks the scenario; `precision` overrides the file's run.precision.

@@ -18,6 +18,11 @@
 // propagate_double_100hz, make_transition_double, make_transition_double_100hz,
 // model_double, model_float (the component's full tick, GyroModel<T>::step_torque).
 //
+// `gimbal`: COUNT ticks of the SIL stub's gimbal plant (gimbal_workload.hpp), KIND seeker,
+// seeker_coarse (1 rad of phase per sub-step) or report, TYPE double or float:
+//   valgrind --tool=callgrind --toggle-collect='gyro_bench_measured_*'
+//            gyro_bench_driver gimbal KIND TYPE COUNT
+//
 // `model_sample`: the per-tick spread of the component's full tick. Run as
 //   valgrind --tool=callgrind --instr-atstart=no --collect-atstart=no
 //            gyro_bench_driver model_sample double|float COUNT EVERY
@@ -29,6 +34,7 @@
 
 #include "bench_problem.hpp"
 #include "bench_tick.hpp"
+#include "gimbal_workload.hpp"
 #include "model_workload.hpp"
 
 #if __has_include(<valgrind/callgrind.h>)
@@ -75,6 +81,18 @@ __attribute__((noinline)) void gyro_bench_measured_ab2(const LinearRhs* r, long 
 __attribute__((noinline)) long gyro_bench_measured_dopri5(const LinearRhs* r, double tol,
                                                           gyro::bench::OdeState* x) {
   return static_cast<long>(gyro::bench::dopri5(*r, tol, *x, nullptr, NoObserver{}));
+}
+
+__attribute__((noinline)) int gyro_bench_measured_gimbal_double(gyro::bench::GimbalWorkload<double>* w, long ticks) {
+  int bad = 0;
+  for (long i = 0; i < ticks; ++i) bad |= static_cast<int>(w->step());
+  return bad;
+}
+
+__attribute__((noinline)) int gyro_bench_measured_gimbal_float(gyro::bench::GimbalWorkload<float>* w, long ticks) {
+  int bad = 0;
+  for (long i = 0; i < ticks; ++i) bad |= static_cast<int>(w->step());
+  return bad;
 }
 
 }  // extern "C"
@@ -137,6 +155,26 @@ int ticks(int argc, char** argv) {
   return 0;
 }
 
+int gimbal(int argc, char** argv) {
+  if (argc < 5) gyro::bench::fail("usage: gimbal KIND double|float COUNT");
+  const gyro::bench::GimbalWorkloadSpec spec = gyro::bench::gimbal_workload_spec(argv[2]);
+  const std::string type = argv[3];
+  const long count = to_long(argv[4]);
+  int bad = 0;
+  if (type == "float") {
+    gyro::bench::GimbalWorkload<float> w(spec);
+    bad = gyro_bench_measured_gimbal_float(&w, count);
+    std::printf("gimbal %s float x %ld: substeps %d tick %.9g s contact %d pitch %.9g\n", argv[2], count, w.substeps(),
+                static_cast<double>(w.tick_s()), static_cast<int>(w.contact()), static_cast<double>(w.output()));
+  } else {
+    gyro::bench::GimbalWorkload<double> w(spec);
+    bad = gyro_bench_measured_gimbal_double(&w, count);
+    std::printf("gimbal %s double x %ld: substeps %d tick %.9g s contact %d pitch %.17g\n", argv[2], count, w.substeps(),
+                w.tick_s(), static_cast<int>(w.contact()), w.output());
+  }
+  return bad;
+}
+
 #if GYRO_BENCH_HAVE_MODEL && GYRO_BENCH_HAVE_CALLGRIND
 template <typename T>
 int model_sample_run(long count, long every) {
@@ -176,9 +214,11 @@ int main(int argc, char** argv) {
   if (argc >= 2 && std::strcmp(argv[1], "model_sample") == 0) return model_sample(argc, argv);
   if (argc >= 2 && std::strcmp(argv[1], "second") == 0) return second(argc, argv);
   if (argc >= 2 && std::strcmp(argv[1], "ticks") == 0) return ticks(argc, argv);
+  if (argc >= 2 && std::strcmp(argv[1], "gimbal") == 0) return gimbal(argc, argv);
   std::fprintf(stderr,
                "usage: %s second CASE CONTENDER STEPS [TOL|RUN_STEPS]\n"
-               "       %s ticks KIND COUNT\n",
-               argv[0], argv[0]);
+               "       %s ticks KIND COUNT\n"
+               "       %s gimbal KIND double|float COUNT\n",
+               argv[0], argv[0], argv[0]);
   return 2;
 }

@@ -603,6 +603,35 @@ plot {', '.join(plots)}
          "microseconds per simulated second", 2 + len(CONTENDERS), "wall")
 
 
+GIMBAL_NAMES = {
+    "seeker": "seeker example, 400 Hz spin, 2 kHz tick",
+    "seeker_coarse": "seeker example, 1 rad per sub-step",
+    "report": "the report's sample gyro, INITG's step",
+}
+
+
+def gimbal_section(rdir):
+    """The SIL stub's gimbal plant: instructions per tick from two run lengths."""
+    rows = read_csv(os.path.join(rdir, "gimbal.csv"))
+    if not rows:
+        return "*Pending: scripts/bench.sh fills this section (gimbal.csv was not produced).*"
+    runs = {}
+    for r in rows:
+        runs.setdefault((r["kind"], r["type"]), []).append(r)
+    lines = ["| device | scalar | sub-steps per tick | tick (s) | instructions per tick | per sub-step "
+             "| per evaluation (sub-step / 12) | per simulated second |",
+             "|---|---|--:|--:|--:|--:|--:|--:|"]
+    for (kind, typ), rs in runs.items():
+        rs.sort(key=lambda r: int(r["ticks"]))
+        (a, b) = rs[0], rs[-1]
+        per_tick = (float(b["instructions"]) - float(a["instructions"])) / (int(b["ticks"]) - int(a["ticks"]))
+        sub = int(a["substeps"])
+        tick = float(a["tick_s"])
+        lines.append(f"| {GIMBAL_NAMES.get(kind, kind)} | {typ} | {sub} | {tick:.4g} | {fmt_int(per_tick)} "
+                     f"| {fmt_int(per_tick / sub)} | {fmt_int(per_tick / sub / 12)} | {fmt_int(per_tick / tick)} |")
+    return "\n".join(lines)
+
+
 # ---------------------------------------------------------------------------------------
 
 
@@ -649,6 +678,7 @@ def main():
         "TICK_LEAN_STEP": f"{res.ticks.get('advance_lean_double', float('nan')) - 3:.0f}",
         "TICK_LEAN_FLOAT": f"{res.ticks.get('advance_lean_float', float('nan')):.0f}",
         "MODEL": model_section(res),
+        "GIMBAL": gimbal_section(res.rdir),
         "CLOCK_OVERHEAD": (f"{float(res.latency['clock_overhead']['median_ns']):.0f} ns"
                            if "clock_overhead" in res.latency else "n/a"),
         "TICK_VERDICT": ("within the target" if res.ticks.get("advance_double", 1e9) <= 40

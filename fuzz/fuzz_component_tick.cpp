@@ -365,6 +365,7 @@ void run(Bytes& in, std::uint8_t head) {
       GYRO_FUZZ_CHECK(ck.field != nullptr);
       GYRO_FUZZ_CHECK(c.mode() == GyroMode::kIdle && c.activate() == Status::kNotConfigured);
       GYRO_FUZZ_CHECK(c.step(1, script.guidance) == Status::kNotConfigured);
+      GYRO_FUZZ_CHECK(twin.step(1, script.guidance) == Status::kNotConfigured);  // counted alike
     }
   }
   GYRO_FUZZ_CHECK(c.configure(cfg).ok());

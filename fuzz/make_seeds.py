@@ -150,7 +150,10 @@ def component_seeds():
 
 # --- fuzz_scenario_parser ------------------------------------------------------------------
 BAD_SEEDS = ["bad_json.json", "bad_fault_kind.json", "missing_field.json", "unknown_key.json",
-             "schedule_out_of_order.json", "wrong_type_integer.json"]
+             "schedule_out_of_order.json", "wrong_type_integer.json", "duplicate_key.json",
+             "integer_wraps.json", "control_characters_in_key.json", "deep_nesting.json",
+             "overflow_spin.json", "overflow_torquer_scale.json", "overflow_float_slew.json",
+             "overflow_component_rotor.json"]
 
 
 def main():

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Benchmarks of the exact rotor propagator against the integrators a user would pick instead.
 # One command: builds (Release = -O2, x86-64 baseline), finds each contender's steps for the
-# accuracy target, counts instructions with callgrind, times with Google Benchmark, and writes
-# docs/performance.md with docs/img/*.png.
+# accuracy target, counts instructions with callgrind (also of the SIL stub's gimbal plant), times
+# with Google Benchmark, and writes docs/performance.md with docs/img/*.png.
 #
 #   scripts/bench.sh [BUILD_DIR]        (default build-bench; raw results in BUILD_DIR/bench-results)
 #
 # Needs: cmake, g++, Eigen, Google Benchmark (libbenchmark-dev), Boost headers (libboost-dev),
-# valgrind, gnuplot (gnuplot-nox), python3, objdump. About 6 minutes on two cores.
+# valgrind, gnuplot (gnuplot-nox), python3, objdump. About 7 minutes on two cores.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -114,6 +114,19 @@ if [ -f "$root/component/include/gyro/gyro_model.hpp" ]; then
   done
   rm -rf "$results/samples"
 fi
+
+say "gimbal plant of the SIL stub: instructions per tick (two run lengths)"
+echo "kind,type,ticks,instructions,substeps,tick_s" > "$results/gimbal.csv"
+for run in "seeker double" "seeker float" "seeker_coarse double" "report double" "report float"; do
+  set -- $run
+  for n in 2000 4000; do
+    out=$(valgrind --tool=callgrind --callgrind-out-file="$results/callgrind/gimbal.$1.$2.$n.out" \
+      --toggle-collect='gyro_bench_measured_*' "$bin/gyro_bench_driver" gimbal "$1" "$2" "$n" 2>>"$results/valgrind.log")
+    ir=$(awk '/^totals:/ {print $2}' "$results/callgrind/gimbal.$1.$2.$n.out")
+    shape=$(sed -n 's/.*substeps \([0-9]*\) tick \([0-9.e+-]*\) s.*/\1,\2/p' <<< "$out")
+    echo "$1,$2,$n,$ir,$shape" >> "$results/gimbal.csv"
+  done
+done
 
 say "wall time (Google Benchmark, median of $reps repetitions)"
 "$bin/gyro_bench_wall" --calibration="$results/calibration.csv" \

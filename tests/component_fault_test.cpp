@@ -26,8 +26,10 @@ struct FaultCase {
 // - a bias jump above max_pickoff_step_rad: rejected as a jump, then as invalid persistence;
 // - a stuck pickoff or a dead/saturated torquer while slewing at 0.3 rad/s: the residual
 //   grows by 1.5e-4 rad a tick to its 2e-3 limit (14 ticks), then residual persistence (20);
-// - spin motor failure (time constant 0.05 s): spin below 300 Hz after 0.05*ln(4/3) = 29
-//   ticks, then spin-low persistence (50).
+// - spin motor failure (the motor brakes the rotor with time constant 0.05 s): spin below
+//   300 Hz after 0.05*ln(4/3) = 29 ticks, then spin-low persistence (50); on the gimbal plant
+//   the brake's reaction (1.5 N m about the spin axis) swings the outer gimbal first, and the
+//   residual latches the fault before the spin is low.
 const FaultCase kCases[] = {
     {"stuck pickoff", FaultKind::kStuckPickoff, -1, 0.0, kResidualFault, 40},
     {"invalid reading (valid bit clear)", FaultKind::kInvalidReading, -1, 0.0, kPickoffInvalid, 10},
@@ -125,7 +127,7 @@ TEST(ComponentFaults, GivenHealthyNoisyGyroThenNoFalseAlarmOverTenSeconds) {
         << "false alarm at tick " << sil.tick << " flags " << sil.tm().flags;
   }
   EXPECT_EQ(sil.tm().counters[6], 0u);
-  EXPECT_LT(sil.gyro.truth().gimbal_cone_rad(), 0.3);
+  EXPECT_LT(sil.gyro.cone_rad(), 0.3);
 }
 
 }  // namespace

@@ -371,7 +371,7 @@ TEST(ComponentConfig, GivenANominalRotorWhoseTransitionOverflowsWhenConfiguredTh
   const ConfigCheck r = sil.component.configure(c);
   EXPECT_EQ(r.status, Status::kNumericalOverflow);
   ASSERT_NE(r.field, nullptr);
-  EXPECT_STREQ(r.field, "tick_s");
+  EXPECT_STREQ(r.field, "nominal_spin_hz");  // the field responsible, not the tick
   EXPECT_EQ(sil.component.activate(), Status::kNotConfigured) << "a refused config is not kept";
 }
 

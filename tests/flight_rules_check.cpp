@@ -6,6 +6,8 @@
 #include "gyro/component_config.hpp"
 #include "gyro/component_types.hpp"
 #include "gyro/error_sources.hpp"
+#include "gyro/gimbal_geometry.hpp"
+#include "gyro/exact_step_check.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/persistence.hpp"
 #include "gyro/rotor_parameters.hpp"
@@ -21,6 +23,9 @@ template Status make_transition<double>(const RotorParameters<double>&, double,
                                         RotorTransition<double>&);
 template Status nutation_amplitude<float>(const RotorParameters<float>&, const Vector2<float>&,
                                           const Vector2<float>&, Vector2<float>&);
+template ConfigCheck check_exact_step<float>(float, float, float, float, float, float, const ExactStepFields&);
+template ConfigCheck check_exact_step<double>(double, double, double, double, double, double,
+                                              const ExactStepFields&);
 template Status nutation_amplitude<double>(const RotorParameters<double>&, const Vector2<double>&,
                                            const Vector2<double>&, Vector2<double>&);
 }  // namespace gyro
@@ -36,7 +41,11 @@ template class GyroComponent<float>;
 template class GyroComponent<double>;
 }  // namespace gyro
 
+#include "gyro/fault_schedule.hpp"
 #include "gyro/noise.hpp"
+#include "gyro/pickoff_electronics.hpp"
+#include "gyro/report_plant.hpp"
+#include "gyro/torquer_electronics.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro {
@@ -67,4 +76,41 @@ template SampleRunSummary run_report_sample<float, flight_rules_check::IgnoreSte
     float, int, flight_rules_check::IgnoreStep&&) noexcept;
 template SampleRunSummary run_report_sample<double, flight_rules_check::IgnoreStep>(
     double, int, flight_rules_check::IgnoreStep&&) noexcept;
+}  // namespace gyro
+
+#include "gyro/dormand_prince8.hpp"
+#include "gyro/gimbal_dynamics.hpp"
+#include "gyro/gimbal_kinematics.hpp"
+#include "gyro/gimbal_plant.hpp"
+#include "gyro/gimbal_plant_config.hpp"
+#include "gyro/gimbal_stop.hpp"
+#include "gyro/seeker_gimbal.hpp"
+
+namespace gyro {
+template class GimbalPlant<float>;
+template class GimbalPlant<double>;
+template ConfigCheck check<float>(const GimbalPlantConfig<float>&) noexcept;
+template ConfigCheck check<double>(const GimbalPlantConfig<double>&) noexcept;
+template GimbalParameters<float> make_gimbal_parameters<float>(const GimbalPlantConfig<float>&) noexcept;
+template GimbalParameters<double> make_gimbal_parameters<double>(const GimbalPlantConfig<double>&) noexcept;
+template GimbalAccelerations<float> gimbal_accelerations<float>(const GimbalParameters<float>&,
+                                                                const GimbalJointState<float>&,
+                                                                const GimbalDrive<float>&,
+                                                                const BodyInstant<float>&) noexcept;
+template GimbalAccelerations<double> gimbal_accelerations<double>(const GimbalParameters<double>&,
+                                                                  const GimbalJointState<double>&,
+                                                                  const GimbalDrive<double>&,
+                                                                  const BodyInstant<double>&) noexcept;
+template bool resolve_gimbal_stop<float>(const GimbalStop<float>&, const GimbalInertias<float>&,
+                                         GimbalJointState<float>&) noexcept;
+template bool resolve_gimbal_stop<double>(const GimbalStop<double>&, const GimbalInertias<double>&,
+                                          GimbalJointState<double>&) noexcept;
+template float gimbal_fastest_rate<float>(const GimbalPlantConfig<float>&) noexcept;
+template double gimbal_fastest_rate<double>(const GimbalPlantConfig<double>&) noexcept;
+template int gimbal_substeps<float>(const GimbalPlantConfig<float>&, float) noexcept;
+template int gimbal_substeps<double>(const GimbalPlantConfig<double>&, double) noexcept;
+template GimbalPlantConfig<float> seeker_gimbal_config<float>() noexcept;
+template GimbalPlantConfig<double> seeker_gimbal_config<double>() noexcept;
+template float gimbal_kinetic_energy<float>(const GimbalInertias<float>&, const GimbalBodyRates<float>&) noexcept;
+template double gimbal_kinetic_energy<double>(const GimbalInertias<double>&, const GimbalBodyRates<double>&) noexcept;
 }  // namespace gyro

@@ -20,8 +20,10 @@
 #include <memory>
 #include <vector>
 
+#include "gyro/gimbal_plant.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
+#include "gyro/seeker_gimbal.hpp"
 
 namespace gyro {
 namespace {
@@ -196,6 +198,56 @@ TYPED_TEST(NoHeap, GivenBadInputWhenRejectedThenNoHeap) {
   EXPECT_EQ(st[3], Status::kNonPositiveInertia);
   EXPECT_EQ(st[4], Status::kNonFiniteInput);
   EXPECT_EQ(st[5], Status::kNoSteadyState);
+}
+
+// ----------------------------------------------------------------------------------------------
+// The SIL stub's gimbal plant: configure, start, steps with everything on (contact, motor at
+// its limit, Coulomb friction, unbalance, gyro axes), refusals.
+
+TYPED_TEST(NoHeap, GivenTheGimbalPlantWithEverythingOnWhenConfiguredStartedAndSteppedThenNoHeap) {
+  using T = TypeParam;
+  for (const TorqueAxes axes : {TorqueAxes::kGimbal, TorqueAxes::kGyro}) {
+    GimbalPlantConfig<T> c = seeker_gimbal_config<T>();
+    c.inner_coulomb_torque = T(2e-4);
+    c.outer_coulomb_torque = T(2e-4);
+    c.mass_unbalance = T(1e-4);
+    c.torque_axes = axes;
+    GimbalStart<T> s;
+    s.gimbal_angle_rad = Vector2<T>(T(0.3), T(0.2));
+    s.gimbal_rate_rad_s = Vector2<T>(T(5), T(-5));
+    s.spin_hz = T(400);
+    BodyState<T> b0, b1;
+    b1.rate_rad_s = Vector3<T>(T(2), T(1), T(-1));
+    b1.specific_force = Vector3<T>(T(100), T(0), T(-9.8));
+    GimbalPlant<T> p;
+    ConfigCheck cc;
+    Status st[6] = {};
+    bool contact = false, saturated = false;
+    const HeapUse use = measure_heap([&] {
+      cc = p.configure(c, T(5e-4));
+      st[0] = p.start(s, b0);
+      for (int k = 0; k < 200; ++k) {
+        const Status sk = p.step(Vector2<T>(T(0.3), T(0)), k == 0 ? b0 : b1, b1);  // into the stop
+        if (sk != Status::kOk) st[1] = sk;
+        contact = contact || p.in_contact();
+        saturated = saturated || p.motor_saturated();
+      }
+      st[2] = p.step(Vector2<T>(std::numeric_limits<T>::quiet_NaN(), T(0)), b1, b1);
+      st[3] = p.step(Vector2<T>(T(2), T(0)), b1, b1);
+      st[4] = p.set_spin_drive(SpinDrive::kFree, T(0));
+      st[5] = p.step(Vector2<T>::Zero(), b1, b1);
+    });
+    expect_no_heap(use, "GimbalPlant");
+    EXPECT_TRUE(cc.ok());
+    EXPECT_EQ(st[0], Status::kOk);
+    EXPECT_EQ(st[1], Status::kOk);
+    EXPECT_EQ(st[2], Status::kNonFiniteInput);
+    EXPECT_EQ(st[3], Status::kOutOfRange);
+    EXPECT_EQ(st[4], Status::kOk);
+    EXPECT_EQ(st[5], Status::kOk);
+    EXPECT_TRUE(contact);
+    EXPECT_TRUE(saturated);
+  }
 }
 
 }  // namespace

@@ -17,10 +17,17 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
+#include <nlohmann/json.hpp>
+#include <thread>
+
 #include "body_motion.hpp"
 #include "csv_writer.hpp"
 #include "plot.hpp"
+#include "printable.hpp"
 #include "scenario.hpp"
+#include "scenario_limits.hpp"
 #include "sil_runner.hpp"
 
 namespace gyro::sil {
@@ -335,6 +342,20 @@ TEST(SilBadScenarios, GivenEachMalformedScenarioThenItIsRefusedNamingFileFieldAn
       {"bad_request.json", {"guidance.schedule[0].request", "expected \"none\", \"cage\" or \"uncage\""}},
       {"bad_precision.json", {"run.precision", "expected \"float\" or \"double\""}},
       {"bad_json.json", {"(document)", "not valid JSON: parse error at line 6"}},
+      // Refused up front rather than accepted (issue 10): each names the field responsible.
+      {"duplicate_key.json", {"gyro.rotor.friction", "duplicate key"}},
+      {"integer_wraps.json", {"gyro.faults[0].axis", "got 18446744073709551615"}},
+      {"control_characters_in_key.json", {"body[\"rate\\u001b[2J\\u001b[31m\"]", "unknown key"}},
+      {"deep_nesting.json", {"body.nested[0][0][0][0][0][0][0][0][0][0][0][0][0][0]", "nested deeper than 16"}},
+      {"far_future_time.json", {"guidance.schedule[1].t_s", "more than 2^53 ticks"}},
+      {"overflow_spin.json", {"gyro.rotor.spin_hz", "exact step over one tick overflows (value 1e+200)"}},
+      {"overflow_inertia.json", {"gyro.rotor.pitch_inertia", "exact step over one tick overflows (value 5e-324)"}},
+      {"overflow_component_rotor.json", {"component.pitch_inertia", "refused by GyroComponent::configure"}},
+      {"overflow_torquer_scale.json", {"gyro.torquer.scale_factor[0]", "largest torque that can act"}},
+      {"overflow_error_source.json", {"gyro.errors.pitch.static_drift_rad_s", "largest torque that can act"}},
+      {"overflow_body_rate.json", {"body.rate_rad_s[0]", "more than pi"}},
+      {"overflow_float_slew.json", {"guidance.schedule[0].slew_rate_rad_s[0]", "not representable in float"}},
+      {"weave_above_nyquist.json", {"body.weave.frequency_hz", "Nyquist"}},
   };
   const std::vector<fs::path> files = json_files(kBad);
   ASSERT_EQ(files.size(), expected.size()) << "every file in tests/data/bad_scenarios needs an expectation";
@@ -535,6 +556,276 @@ TEST(SilPlot, GivenNoGnuplotThenPlottingFailsWithAClearMessage) {
   } else {
     ::unsetenv("GNUPLOT");
   }
+}
+
+// ---------------------------------------------------------------------------------------
+// Messages: nothing from the input reaches the terminal raw
+
+TEST(SilMessages, GivenControlCharactersThenPrintableEscapesThemAndKeepsOrdinaryText) {
+  EXPECT_EQ(printable("plain, with ümlauts and 角度"), "plain, with ümlauts and 角度");
+  EXPECT_EQ(printable("a\x1b[2Jb"), "a\\x1b[2Jb");
+  EXPECT_EQ(printable("tab\there\nnew\rline\x7f"), "tab\\there\\nnew\\rline\\x7f");
+  EXPECT_EQ(printable(std::string("nul\0end", 7)), "nul\\x00end");
+  EXPECT_EQ(printable("c1 \xc2\x9b" "31m"), "c1 \\u{009b}31m");                 // U+009B, the 8-bit CSI
+  EXPECT_EQ(printable("bidi \xe2\x80\xae" "txt"), "bidi \\u{202e}txt");         // RIGHT-TO-LEFT OVERRIDE
+  EXPECT_EQ(printable("bad \xff\xc0\xaf utf8 \xe2\x82"), "bad \\xff\\xc0\\xaf utf8 \\xe2\\x82");  // overlong, truncated
+}
+
+TEST(SilMessages, GivenAScenarioErrorThenItsMessageIsEscapedAndItsPartsAreAsGiven) {
+  const ScenarioError e("dir/\x1b]0;title\x07.json", "body[\"x\"]", "got \"\x1b[31m\"");
+  EXPECT_EQ(std::string(e.what()), "dir/\\x1b]0;title\\x07.json: body[\"x\"]: got \"\\x1b[31m\"");
+  EXPECT_EQ(e.file(), "dir/\x1b]0;title\x07.json");
+  EXPECT_EQ(e.reason(), "got \"\x1b[31m\"");
+}
+
+// ---------------------------------------------------------------------------------------
+// The parser: keys, integers, paths, files
+
+std::string with(const std::string& from, const std::string& to) {
+  std::string text = slurp(kScenarios / "report_sample.json");
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+  return text;
+}
+
+ScenarioError refusal_of(const std::string& text) {
+  try {
+    (void)check_configs(parse_scenario(text, "t.json"));
+  } catch (const ScenarioError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted";
+  return ScenarioError("", "", "");
+}
+
+TEST(SilParser, GivenAKeyRepeatedInOneObjectThenRefusedWhereverItIsAndTheSameKeyInTwoObjectsIsNot) {
+  const ScenarioError top = refusal_of(with("\"run\": {", "\"description\": \"again\",\n  \"run\": {"));
+  EXPECT_EQ(top.field(), "description");
+  EXPECT_EQ(top.reason(), "duplicate key (a key may appear only once in an object)");
+  const ScenarioError in_array =
+      refusal_of(with("{ \"t_s\": 0.0,", "{ \"t_s\": 0.0, \"t_s\": 0.5,"));
+  EXPECT_EQ(in_array.field(), "guidance.schedule[0].t_s");
+  const ScenarioError second = refusal_of(
+      with("{ \"t_s\": 0.0, \"request\": \"uncage\", \"slew_rate_rad_s\": [-0.19, 0.013] }",
+           "{ \"t_s\": 0.0 }, { \"t_s\": 0.1, \"request\": \"cage\", \"request\": \"uncage\" }"));
+  EXPECT_EQ(second.field(), "guidance.schedule[1].request");
+  // "friction" is a key of gyro.rotor and of component: no refusal.
+  EXPECT_NO_THROW(check_configs(parse_scenario(slurp(kScenarios / "report_sample.json"), "t.json")));
+}
+
+TEST(SilParser, GivenIntegersOutOfRangeThenRefusedAsWrittenNeverWrapped) {
+  const std::string fault = "\"seed\": 1,\n    \"faults\": [{\"kind\": \"dropout\", \"start_s\": 0.1, \"axis\": ";
+  for (const char* axis : {"18446744073709551615", "9223372036854775808", "-9223372036854775808", "2", "-2"}) {
+    SCOPED_TRACE(axis);
+    const ScenarioError e = refusal_of(with("\"seed\": 1", fault + axis + "}]"));
+    EXPECT_EQ(e.field(), "gyro.faults[0].axis");
+    EXPECT_EQ(e.reason(), std::string("must be 0 (pitch), 1 (yaw) or -1 (both), got ") + axis);
+  }
+  const Scenario ok = parse_scenario(with("\"seed\": 1", fault + "1}]"), "t.json");
+  EXPECT_EQ(ok.gyro.faults[0].axis, 1);
+  const ScenarioError seed = refusal_of(with("\"seed\": 1", "\"seed\": 18446744073709551616"));  // 2^64
+  EXPECT_EQ(seed.field(), "gyro.seed");
+  const ScenarioError ticks = refusal_of(with("\"ticks\": 801", "\"ticks\": 100000001"));
+  EXPECT_EQ(ticks.field(), "run.ticks");
+}
+
+TEST(SilParser, GivenKeysThatAreNotPlainNamesThenThePathQuotesThemAsJsonStrings) {
+  EXPECT_EQ(refusal_of(with("\"rate_rad_s\"", "\"a.b\"")).field(), "body[\"a.b\"]");
+  EXPECT_EQ(refusal_of(with("\"rate_rad_s\"", "\"\"")).field(), "body[\"\"]");
+  EXPECT_EQ(refusal_of(with("\"rate_rad_s\"", "\"x]y\\\"z\"")).field(), "body[\"x]y\\\"z\"]");
+  EXPECT_EQ(refusal_of(with("\"rate_rad_s\"", "\"r\\u00e4te\"")).field(), "body[\"r\\u00e4te\"]");
+}
+
+TEST(SilParser, GivenTimesBeyondCountableTicksThenRefusedNamingTheTime) {
+  const ScenarioError e = refusal_of(with("{ \"t_s\": 0.0,", "{ \"t_s\": 1e300,"));
+  EXPECT_EQ(e.field(), "guidance.schedule[0].t_s");
+  EXPECT_NE(e.reason().find("more than 2^53 ticks"), std::string::npos) << e.reason();
+}
+
+TEST(SilFiles, GivenAFileLargerThanTheLimitThenRefusedFromItsSizeBeforeReading) {
+  TempPath big("big.json");
+  { std::ofstream(big.path()) << "{"; }
+  fs::resize_file(big.path(), kMaxScenarioBytes + 1);
+  try {
+    (void)read_scenario(big.path());
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.field(), "(file)");
+    EXPECT_EQ(e.reason(), "the file has 1048577 bytes, more than the limit of 1048576 bytes for a scenario");
+  }
+}
+
+TEST(SilFiles, GivenAnEndlessDeviceOrADirectoryThenRefusedAsSuch) {
+  try {
+    (void)read_scenario("/dev/zero");
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.reason(), "gave more than the limit of 1048576 bytes for a scenario (stopped reading)");
+  }
+  try {
+    (void)read_scenario(kScenarios);
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.field(), "(file)");
+    EXPECT_EQ(e.reason(), "is a directory, not a scenario file");
+  }
+}
+
+TEST(SilFiles, GivenAScenarioThroughAPipeThenItIsRead) {
+  TempPath fifo("pipe");
+  ASSERT_EQ(::mkfifo(fifo.path().c_str(), 0600), 0);
+  const std::string text = slurp(kScenarios / "report_sample.json");
+  std::thread writer([&] { std::ofstream(fifo.path(), std::ios::binary) << text; });
+  const Scenario s = read_scenario(fifo.path());
+  writer.join();
+  EXPECT_EQ(s.run.ticks, 801u);
+}
+
+// ---------------------------------------------------------------------------------------
+// Limits checked up front
+
+TEST(SilLimits, GivenEveryShippedScenarioThenItsCsvIsWithinTheSizeBoundAndTheBoundIsNotLoose) {
+  for (const fs::path& p : json_files(kScenarios)) {
+    SCOPED_TRACE(p.filename().string());
+    const Scenario s = load_scenario(p);
+    const RunOutput r = run_to_string(s);
+    const std::uint64_t bound = csv_size_bound(s);
+    EXPECT_LE(r.csv.size(), bound);
+    EXPECT_GT(static_cast<double>(r.csv.size()), 0.8 * static_cast<double>(bound));
+    for (const std::string& row : lines(r.csv)) ASSERT_LE(row.size() + 1, csv_row_bytes_bound(s.run.ticks)) << row;
+  }
+  // The issue's figure: 1e8 ticks wrote about 52 GB; the bound says so before anything runs.
+  Scenario huge = load_scenario(kScenarios / "report_sample.json");
+  huge.run.ticks = 100'000'000;
+  EXPECT_GT(csv_size_bound(huge), 52'000'000'000u);
+}
+
+TEST(SilLimits, GivenEachValueThatWouldBreakTheRunThenTheRefusalNamesItsField) {
+  struct Case {
+    const char* from;
+    const char* to;
+    const char* field;
+    const char* reason;
+  };
+  const Case cases[] = {
+      {"\"gravity\": 32.1725,", "\"gravity\": 32.1725, \"torquer\": {\"scale_factor\": [1, 1e308]},",
+       "gyro.torquer.scale_factor[1]", "largest torque"},
+      {"\"max_torque\": 500.0", "\"max_torque\": 1e307", "component.max_torque", "largest torque"},
+      {"\"seed\": 1", "\"seed\": 1, \"faults\": [{\"kind\": \"saturated_torquer\", \"start_s\": 5, \"magnitude\": 1e308}]",
+       "gyro.faults[0].magnitude", "largest torque"},
+      {"\"seed\": 1", "\"seed\": 1, \"errors\": {\"yaw\": {\"in_plane_erection_1_s\": 1e306}}",
+       "gyro.errors.yaw.in_plane_erection_1_s", "largest torque"},
+      {"\"seed\": 1", "\"seed\": 1, \"errors\": {\"pitch\": {\"torquer_cross_coupling\": 1e306}}",
+       "gyro.errors.pitch.torquer_cross_coupling", "largest torque"},
+      {"\"seed\": 1", "\"seed\": 1, \"errors\": {\"pitch\": {\"g_sensitive_drift_rad_s\": 1}}",  // with accel below
+       "body.accel[0]", "largest torque"},
+      {"\"gravity\": 32.1725", "\"gravity\": 5e-324", "gyro.gravity", "acceleration in units of gyro.gravity"},  // with accel below
+      {"\"composition\": \"pitch_then_yaw\"", "\"weave\": {\"yaw_amplitude_rad_s\": 1e5, \"frequency_hz\": 1}",
+       "body.weave.yaw_amplitude_rad_s", "more than pi"},
+      {"\"spin_inertia\": 3.0,\n      \"friction\"", "\"spin_inertia\": 1e300,\n      \"friction\"",
+       "gyro.rotor.spin_inertia", "exact step over one tick overflows"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.field);
+    std::string text = with(c.from, c.to);
+    if (std::string(c.field) == "body.accel[0]") {
+      text.replace(text.find("\"composition\""), 13, "\"accel\": [1e306, 0], \"composition\"");
+    }
+    if (std::string(c.field) == "gyro.gravity") {
+      text.replace(text.find("\"composition\""), 13, "\"accel\": [1, 0], \"composition\"");
+    }
+    const ScenarioError e = refusal_of(text);
+    EXPECT_EQ(e.field(), c.field) << e.what();
+    EXPECT_NE(e.reason().find(c.reason), std::string::npos) << e.reason();
+  }
+}
+
+TEST(SilLimits, GivenAFloatRunThenEveryNumberBeyondFloatIsRefusedWhereverItIs) {
+  for (const auto& [from, to, field] : std::vector<std::array<const char*, 3>>{
+           {"\"rate_rad_s\": [0.40142567, 0.31415922]", "\"rate_rad_s\": [0.40142567, -4e38]", "body.rate_rad_s[1]"},
+           {"\"composition\"", "\"accel\": [1e39, 0], \"composition\"", "body.accel[0]"},
+           {"\"gravity\": 32.1725", "\"gravity\": 1e300", "gyro.gravity"},
+       }) {
+    SCOPED_TRACE(field);
+    Scenario s = parse_scenario(with(from, to), "t.json");
+    s.run.precision = Precision::kFloat;
+    try {
+      check_configs(s);
+      ADD_FAILURE() << "accepted";
+    } catch (const ScenarioError& e) {
+      EXPECT_EQ(e.field(), field);
+      EXPECT_NE(e.reason().find("not representable in float"), std::string::npos) << e.reason();
+    }
+  }
+}
+
+// Every numeric field of two scenarios set in turn to extreme values, in both precisions: a
+// scenario check_configs() accepts runs its first ticks without a refusal and without a
+// non-finite value in the CSV (what used to fail on the first tick is refused up front).
+TEST(SilLimits, GivenAnyFieldAtAnExtremeValueThenEitherRefusedUpFrontOrTheFirstTicksRunClean) {
+  using json = nlohmann::json;
+  const double extremes[] = {0.0, -1.0, 5e-324, 1e-300, 1e-45, 1e-40, 1e20, 1e39, -1e39,
+                             1e160, 1e200, 1e300, 1.7e308, -1e300};
+  std::size_t refused = 0, ran = 0;
+  for (const char* file : {"report_sample.json", "seeker_slew.json"}) {
+    json base = json::parse(slurp(kScenarios / file));
+    base["run"].erase("duration_s");
+    base["run"]["ticks"] = 20;
+    base["gyro"]["torquer"] = {{"scale_factor", {1.0, 1.0}}, {"max_torque", 0.0}};
+    base["gyro"]["faults"] = json::parse(R"([{"kind": "saturated_torquer", "start_s": 0, "axis": 0, "magnitude": 0.01},
+        {"kind": "bias_jump", "start_s": 0, "axis": 1, "magnitude": 0.001},
+        {"kind": "spin_motor_failure", "start_s": 0, "magnitude": 10}])");
+    base["gyro"]["errors"] = json::parse(R"({"pitch": {"static_drift_rad_s": 1e-5, "in_plane_erection_1_s": 1e-3,
+        "cross_plane_erection_1_s": 1e-3, "g_sensitive_drift_rad_s": 1e-5, "torquer_cross_coupling": 0.01,
+        "coulomb_friction_rad_s": 1e-5}})");
+    std::vector<json::json_pointer> leaves;
+    const json flat = base.flatten();
+    for (const auto& item : flat.items()) {
+      if (item.value().is_number() && item.key().rfind("/run", 0) != 0) leaves.emplace_back(item.key());
+    }
+    for (const json::json_pointer& leaf : leaves) {
+      for (double x : extremes) {
+        json d = base;
+        d[leaf] = x;
+        for (Precision prec : {Precision::kDouble, Precision::kFloat}) {
+          SCOPED_TRACE(std::string(file) + " " + leaf.to_string() + " = " + std::to_string(x) + " " + to_string(prec));
+          Scenario s;
+          try {
+            s = parse_scenario(d.dump(), file);
+            s.run.precision = prec;
+            check_configs(s);
+          } catch (const ScenarioError&) {
+            ++refused;
+            continue;
+          }
+          ++ran;
+          RunOutput r;
+          ASSERT_NO_THROW(r = run_to_string(s));
+          ASSERT_EQ(r.summary.nonfinite_values, 0u);
+        }
+      }
+    }
+  }
+  EXPECT_GT(refused, 100u);
+  EXPECT_GT(ran, 1000u);
+}
+
+TEST(SilBodyMotion, GivenAWeaveSoSlowThatOneTicksPhaseUnderflowsThenTheMeanRateIsStillFinite) {
+  BodyProfile p;
+  p.rate_rad_s = {0.1, 0.0};
+  p.weave = {0.3, 0.3, 5e-324, 0.5};
+  BodyMotion m(p, 1e-3);
+  const Eigen::Vector2d mean = m.mean_rate(0.0, 1e-3);
+  EXPECT_EQ(mean(0), 0.1);                        // sin(0) = 0: the weave has not started
+  EXPECT_DOUBLE_EQ(mean(1), 0.3 * std::sin(0.5));  // the phase alone
+  for (int k = 0; k < 10; ++k) m.advance();
+  EXPECT_TRUE(m.R_earth_to_body().allFinite());
+  // Just above the switch to the midpoint rule, the closed form agrees with it.
+  p.weave.frequency_hz = 1.2e-5 / (kTwoPi * 1e-3);
+  const BodyMotion n(p, 1e-3);
+  const double t0 = 123.456;
+  EXPECT_NEAR(n.mean_rate(t0, t0 + 1e-3)(0), n.rate_at(t0 + 0.5e-3)(0), 1e-10);
 }
 
 }  // namespace

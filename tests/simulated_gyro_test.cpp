@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -45,13 +46,20 @@ struct Body {
 // H of the report's gyro at spin_hz.
 double h_of(double spin_hz) { return angular_momentum(spin_hz, ReportSample<double>::config().spin_inertia); }
 
+// The report's plant's model (every configuration here uses the report's plant).
+const GyroModel<double>& model_of(const Sim& sim) {
+  const GyroModel<double>* m = sim.report_model();
+  if (m == nullptr) std::abort();
+  return *m;
+}
+
 PickoffReading<double> read(Sim& sim) {
   PickoffReading<double> r;
   EXPECT_EQ(sim.read_pickoffs(r), PortStatus::kOk);
   return r;
 }
 
-V2 truth_angles(const Sim& sim) { return V2(sim.truth().gimbal_pitch_rad(), sim.truth().gimbal_yaw_rad()); }
+V2 truth_angles(const Sim& sim) { return V2(model_of(sim).gimbal_pitch_rad(), model_of(sim).gimbal_yaw_rad()); }
 
 const V2 kTurnForNoise(0.3, -0.2);
 
@@ -84,7 +92,7 @@ TEST(SimulatedGyroLifecycle, GivenStartedThenPowerUpConversionIsAlignedWithTheBo
   EXPECT_TRUE(r.spin_valid);
   EXPECT_EQ(r.spin_hz, kSpinHz);
   EXPECT_EQ(sim.tick(), 0u);
-  EXPECT_EQ(sim.truth().rate_rad_s(), V2(0.1, -0.2));
+  EXPECT_EQ(model_of(sim).rate_rad_s(), V2(0.1, -0.2));
 }
 
 TEST(SimulatedGyroLifecycle, GivenBadAdvanceInputsThenRefusedAndNothingChanges) {
@@ -93,7 +101,7 @@ TEST(SimulatedGyroLifecycle, GivenBadAdvanceInputsThenRefusedAndNothingChanges) 
   ASSERT_EQ(sim.start(M3::Identity(), V2(0.2, 0.1)), Status::kOk);
   ASSERT_EQ(sim.advance(1, M3::Identity(), V2::Zero()), Status::kOk);
   const PickoffReading<double> before = read(sim);
-  const Quaternion<double> q = sim.truth().attitude_gyro_to_earth();
+  const Quaternion<double> q = model_of(sim).attitude_gyro_to_earth();
 
   EXPECT_EQ(sim.advance(1, M3::Identity(), V2::Zero()), Status::kOutOfRange);  // repeated tick
   EXPECT_EQ(sim.advance(3, M3::Identity(), V2::Zero()), Status::kOutOfRange);  // skipped tick
@@ -109,7 +117,7 @@ TEST(SimulatedGyroLifecycle, GivenBadAdvanceInputsThenRefusedAndNothingChanges) 
   const PickoffReading<double> after = read(sim);
   EXPECT_EQ(after.sequence, before.sequence);
   EXPECT_EQ(after.gimbal_angle_rad, before.gimbal_angle_rad);
-  EXPECT_EQ(sim.truth().attitude_gyro_to_earth().coeffs(), q.coeffs());
+  EXPECT_EQ(model_of(sim).attitude_gyro_to_earth().coeffs(), q.coeffs());
   EXPECT_EQ(sim.advance(2, M3::Identity(), V2::Zero()), Status::kOk);
 }
 
@@ -144,10 +152,10 @@ TEST(SimulatedGyroHold, GivenTorqueWrittenEachTickWhenAdvancedThenTruthIsGyroMod
     const double t = static_cast<double>(k / 7) * 7 * kDt;
     const V2 cmd(h * 0.05 * std::sin(3 * t), -h * 0.04 * std::cos(2 * t));
     if (k % 7 == 0) {
-      const Quaternion<double> q_before = sim.truth().attitude_gyro_to_earth();
+      const Quaternion<double> q_before = model_of(sim).attitude_gyro_to_earth();
       ASSERT_EQ(sim.write_torquer(cmd), PortStatus::kOk);
       // Writing does not move the rotor: it acts from now to the next tick.
-      ASSERT_EQ(sim.truth().attitude_gyro_to_earth().coeffs(), q_before.coeffs());
+      ASSERT_EQ(model_of(sim).attitude_gyro_to_earth().coeffs(), q_before.coeffs());
     }
     ASSERT_EQ(sim.applied_torque(), cmd);
     body.step();
@@ -157,8 +165,8 @@ TEST(SimulatedGyroHold, GivenTorqueWrittenEachTickWhenAdvancedThenTruthIsGyroMod
     in.spin_hz = kSpinHz;
     ASSERT_EQ(ref.step_torque(in, cmd), Status::kOk);
     ASSERT_EQ(sim.advance(k + 1, body.R, V2::Zero()), Status::kOk);
-    ASSERT_EQ(sim.truth().attitude_gyro_to_earth().coeffs(), ref.attitude_gyro_to_earth().coeffs()) << k;
-    ASSERT_EQ(sim.truth().rate_rad_s(), ref.rate_rad_s()) << k;
+    ASSERT_EQ(model_of(sim).attitude_gyro_to_earth().coeffs(), ref.attitude_gyro_to_earth().coeffs()) << k;
+    ASSERT_EQ(model_of(sim).rate_rad_s(), ref.rate_rad_s()) << k;
     const PickoffReading<double> r = read(sim);
     ASSERT_EQ(r.gimbal_angle_rad, V2(ref.gimbal_pitch_rad(), ref.gimbal_yaw_rad())) << k;
     ASSERT_EQ(r.sequence, k + 2);
@@ -248,8 +256,8 @@ TEST(SimulatedGyroPickoff, GivenLagWhenGimbalStepsThenReadingReaches63PercentAft
   std::vector<double> fraction{0.0};
   for (std::size_t k = 1; k <= 100; ++k) {
     ASSERT_EQ(sim.advance(k, R, V2::Zero()), Status::kOk);
-    ASSERT_NEAR(sim.truth().gimbal_pitch_rad(), -0.01, 1e-12);
-    fraction.push_back(read(sim).gimbal_angle_rad(0) / sim.truth().gimbal_pitch_rad());
+    ASSERT_NEAR(model_of(sim).gimbal_pitch_rad(), -0.01, 1e-12);
+    fraction.push_back(read(sim).gimbal_angle_rad(0) / model_of(sim).gimbal_pitch_rad());
   }
   EXPECT_NEAR(fraction[20], 1 - std::exp(-1.0), 1e-9);  // 63.2 % after one time constant
   EXPECT_NEAR(fraction[1], 1 - std::exp(-kDt / 0.02), 1e-9);
@@ -338,8 +346,8 @@ TEST(SimulatedGyroTorquer, GivenScaleFactorAndSaturationThenAppliedTorqueIsScale
     ASSERT_EQ(ref.step_torque(in, V2(-1.5, 1.5)), Status::kOk);
     ASSERT_EQ(sim.advance(k, M3::Identity(), V2::Zero()), Status::kOk);
   }
-  EXPECT_EQ(sim.truth().attitude_gyro_to_earth().coeffs(), ref.attitude_gyro_to_earth().coeffs());
-  EXPECT_EQ(sim.truth().applied_torque(), V2(-1.5, 1.5));
+  EXPECT_EQ(model_of(sim).attitude_gyro_to_earth().coeffs(), ref.attitude_gyro_to_earth().coeffs());
+  EXPECT_EQ(model_of(sim).applied_torque(), V2(-1.5, 1.5));
 }
 
 // ---- mechanical gimbal stop ---------------------------------------------------------------
@@ -358,7 +366,7 @@ TEST(SimulatedGyroStop, GivenBodyTurningPastTheStopThenGimbalIsHeldOnTheStopAndD
   for (std::size_t k = 1; k <= 400; ++k) {
     body.step();
     ASSERT_EQ(sim.advance(k, body.R, V2::Zero()), Status::kOk);
-    const double cone = sim.truth().gimbal_cone_rad();
+    const double cone = model_of(sim).gimbal_cone_rad();
     max_cone = std::max(max_cone, cone);
     if (sim.at_gimbal_stop()) {
       ++hits;
@@ -367,8 +375,8 @@ TEST(SimulatedGyroStop, GivenBodyTurningPastTheStopThenGimbalIsHeldOnTheStopAndD
         first_hit = k;
         // Put on the stop in the direction it was heading: the inertial spin axis lags the
         // body turning nose-up (pitch +2 rad/s) and right (yaw +1 rad/s), in proportion.
-        EXPECT_NEAR(sim.truth().gimbal_pitch_rad(), -0.1 * 2 / std::sqrt(5.0), 2e-3);
-        EXPECT_NEAR(sim.truth().gimbal_yaw_rad(), -0.1 / std::sqrt(5.0), 2e-3);
+        EXPECT_NEAR(model_of(sim).gimbal_pitch_rad(), -0.1 * 2 / std::sqrt(5.0), 2e-3);
+        EXPECT_NEAR(model_of(sim).gimbal_yaw_rad(), -0.1 / std::sqrt(5.0), 2e-3);
       }
       const PickoffReading<double> r = read(sim);
       ASSERT_NEAR(std::hypot(r.gimbal_angle_rad(0), r.gimbal_angle_rad(1)), 0.1, 2e-3);
@@ -384,8 +392,8 @@ TEST(SimulatedGyroStop, GivenBodyTurningPastTheStopThenGimbalIsHeldOnTheStopAndD
   // round the rim (here from (-0.089, -0.045) to about (-0.068, +0.074) rad) but stays on it.
   std::printf("[ measured ] stop at 0.1 rad first hit at tick %llu, %d ticks on the stop, max cone %.12f, "
               "final (pitch, yaw) = (%.4f, %.4f)\n",
-              static_cast<unsigned long long>(first_hit), hits, max_cone, sim.truth().gimbal_pitch_rad(),
-              sim.truth().gimbal_yaw_rad());
+              static_cast<unsigned long long>(first_hit), hits, max_cone, model_of(sim).gimbal_pitch_rad(),
+              model_of(sim).gimbal_yaw_rad());
 }
 
 TEST(SimulatedGyroStop, GivenImpactThenGimbalRatesAreTheBodyRates) {
@@ -400,9 +408,9 @@ TEST(SimulatedGyroStop, GivenImpactThenGimbalRatesAreTheBodyRates) {
     body.step();
     ASSERT_EQ(sim.advance(k, body.R, V2::Zero()), Status::kOk);
     if (sim.at_gimbal_stop()) {
-      EXPECT_NEAR(sim.truth().rate_rad_s()(0), 3.0, 1e-9);
-      EXPECT_NEAR(sim.truth().rate_rad_s()(1), 0.0, 1e-9);
-      EXPECT_NEAR(sim.truth().gimbal_pitch_rad(), -0.05, 1e-9);
+      EXPECT_NEAR(model_of(sim).rate_rad_s()(0), 3.0, 1e-9);
+      EXPECT_NEAR(model_of(sim).rate_rad_s()(1), 0.0, 1e-9);
+      EXPECT_NEAR(model_of(sim).gimbal_pitch_rad(), -0.05, 1e-9);
       return;
     }
   }
@@ -450,7 +458,7 @@ TEST(SimulatedGyroSpin, GivenSpinDownThenEachStepUsesTheMidStepSpin) {
     ASSERT_EQ(ref.step_torque(in, V2(1.0, 0.0)), Status::kOk);
     ASSERT_EQ(sim.advance(k, M3::Identity(), V2::Zero()), Status::kOk);
   }
-  EXPECT_LT((sim.truth().attitude_gyro_to_earth().coeffs() - ref.attitude_gyro_to_earth().coeffs()).norm(), 1e-12);
+  EXPECT_LT((model_of(sim).attitude_gyro_to_earth().coeffs() - ref.attitude_gyro_to_earth().coeffs()).norm(), 1e-12);
 }
 
 // ---- faults -------------------------------------------------------------------------------
@@ -573,7 +581,7 @@ TEST(SimulatedGyroFaults, GivenTorquerFaultThenRotorFeelsItOverTheTicksOfItsWind
     const bool dead = k >= kStart && k < kEnd;
     ASSERT_EQ(ref.step_torque(in, dead ? V2::Zero() : cmd), Status::kOk);
     ASSERT_EQ(sim.advance(k + 1, M3::Identity(), V2::Zero()), Status::kOk);
-    ASSERT_EQ(sim.truth().attitude_gyro_to_earth().coeffs(), ref.attitude_gyro_to_earth().coeffs()) << k;
+    ASSERT_EQ(model_of(sim).attitude_gyro_to_earth().coeffs(), ref.attitude_gyro_to_earth().coeffs()) << k;
   }
 }
 

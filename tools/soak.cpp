@@ -94,7 +94,9 @@ int main(int argc, char** argv) {
     if (k % report_every == 0 || k == ticks) {
       const Eigen::Matrix3d r_est = tm.attitude_gyro_to_earth.toRotationMatrix();
       worst_ortho_est = std::max(worst_ortho_est, gyro::orthonormality_error(r_est));
-      worst_ortho_truth = std::max(worst_ortho_truth, gyro::orthonormality_error(stub.truth().R_earth_to_gyro()));
+      if (const gyro::GyroModel<double>* m = stub.report_model()) {
+        worst_ortho_truth = std::max(worst_ortho_truth, gyro::orthonormality_error(m->R_earth_to_gyro()));
+      }
       std::fprintf(stderr, "tick %" PRIu64 " (t = %.0f s): mode %s, residual max %.3e rad, RSS %ld KiB\n", k,
                    static_cast<double>(k) * s.run.tick_s, gyro::to_string(comp.mode()), worst_residual,
                    resident_kib());

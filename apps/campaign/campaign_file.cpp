@@ -395,7 +395,7 @@ FaultOption parse_fault_option(const Fields& f, double duration_s) {
   o.kind = sil::parse_fault_kind(kind);
   if (!o.kind) {
     std::string names = "none";
-    for (int k = 1; k < kFaultKindCount; ++k) names += std::string(", ") + sil::fault_kind_name(static_cast<FaultKind>(k));
+    for (int k = 1; k < kFaultKindCount; ++k) names += std::string(", ") + gyro::fault_kind_name(static_cast<FaultKind>(k));
     f.fail("kind", "unknown fault kind \"" + kind + "\" (one of: " + names + ")");
   }
   o.start_s = f.interval("start_s");
@@ -620,7 +620,7 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
         if (!r[i].is_string()) c.fail_at(p, "expected a fault kind, got " + describe(r[i]));
         const std::string k = r[i].get<std::string>();
         const bool injected = faults && std::any_of(faults->options.begin(), faults->options.end(), [&](const FaultOption& o) {
-                                return o.kind ? k == sil::fault_kind_name(*o.kind) : k == "none";
+                                return o.kind ? k == gyro::fault_kind_name(*o.kind) : k == "none";
                               });
         if (!injected) c.fail_at(p, "no run of this campaign injects \"" + k + "\"");
         out.kinds.push_back(k);

@@ -307,7 +307,7 @@ gyro::sil::PlotRequest run_plot(const fs::path& csv, const fs::path& png, std::u
   p.png = png;
   p.title = "campaign run " + std::to_string(k) + " (seed " + std::to_string(r.plan.seed) + ")";
   if (r.plan.fault && r.plan.fault->kind) {
-    p.title += "\n" + std::string(gyro::sil::fault_kind_name(*r.plan.fault->kind)) + " at " +
+    p.title += "\n" + std::string(gyro::fault_kind_name(*r.plan.fault->kind)) + " at " +
                format_significant(r.plan.fault->start_s, 4) + " s, axis " + std::to_string(r.plan.fault->axis);
   }
   p.time_column = csv_column("t");

@@ -50,7 +50,7 @@ std::optional<PlotJob> latency_cdf(const Campaign& c, const RunTable& t) {
   std::vector<std::string> titles;
   for (const FaultOption& o : c.faults->options) {
     if (!o.kind) continue;
-    const std::string kind = sil::fault_kind_name(*o.kind);
+    const std::string kind = gyro::fault_kind_name(*o.kind);
     if (std::find(titles.begin(), titles.end(), kind) != titles.end()) continue;
     std::uint64_t runs = 0;
     for (std::size_t i = 0; i < t.size(); ++i) runs += t.cell(i, kind_col) == kind && t.cell(i, status) == "ok" ? 1u : 0u;

@@ -107,7 +107,7 @@ RunPlan plan_run(const Campaign& c, std::uint64_t run_index) {
   if (c.faults) {
     p.fault = draw_fault(*c.faults, run_index, p.seed);
     if (p.fault->kind) {
-      json f = {{"kind", sil::fault_kind_name(*p.fault->kind)},
+      json f = {{"kind", gyro::fault_kind_name(*p.fault->kind)},
                 {"start_s", p.fault->start_s},
                 {"duration_s", p.fault->duration_s},
                 {"axis", p.fault->axis}};

@@ -50,7 +50,7 @@ std::vector<std::string> metric_cells(const Campaign& c, const RunResult& r) {
 
 // Scopes other than "all" exist only with a fault injection: they go by the injected kind.
 bool in_scope(const Criterion& k, const RunResult& r) {
-  const std::string kind = r.plan.fault && r.plan.fault->kind ? sil::fault_kind_name(*r.plan.fault->kind) : "none";
+  const std::string kind = r.plan.fault && r.plan.fault->kind ? gyro::fault_kind_name(*r.plan.fault->kind) : "none";
   switch (k.scope) {
     case RunScope::kAll: return true;
     case RunScope::kFaultFree: return kind == "none";
@@ -109,7 +109,7 @@ std::string format_row(const Campaign& c, const RunResult& r) {
   if (c.faults) {
     const FaultDraw& f = *r.plan.fault;
     if (f.kind) {
-      cells.emplace_back(sil::fault_kind_name(*f.kind));
+      cells.emplace_back(gyro::fault_kind_name(*f.kind));
       cells.push_back(number_cell(f.start_s));
       cells.push_back(number_cell(f.duration_s));
       cells.push_back(std::to_string(f.axis));

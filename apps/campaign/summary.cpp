@@ -63,7 +63,7 @@ std::vector<std::string> kinds_of(const Campaign& c) {
   std::vector<std::string> out;
   if (!c.faults) return out;
   for (const FaultOption& o : c.faults->options) {
-    const std::string k = o.kind ? sil::fault_kind_name(*o.kind) : "none";
+    const std::string k = o.kind ? gyro::fault_kind_name(*o.kind) : "none";
     if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
   }
   return out;

@@ -93,8 +93,8 @@ template <typename T, typename Sink>
     if (st != gyro::Status::kOk) return st;
     if (k % kSilCheckpointEvery == 0 || k == s.ticks) {
       const gyro::GyroTelemetry<T>& tm = component.telemetry();
-      sink(SilSample<T>{index, k, static_cast<int>(tm.mode), tm.flags, stub.truth().gimbal_pitch_rad(),
-                        stub.truth().gimbal_yaw_rad(), tm.gimbal_predicted_rad(0), tm.gimbal_predicted_rad(1),
+      sink(SilSample<T>{index, k, static_cast<int>(tm.mode), tm.flags, stub.gimbal_angle_rad()(0),
+                        stub.gimbal_angle_rad()(1), tm.gimbal_predicted_rad(0), tm.gimbal_predicted_rad(1),
                         tm.precession_rate_rad_s(0), tm.precession_rate_rad_s(1), tm.torque_cmd(0),
                         tm.torque_cmd(1)});
     }

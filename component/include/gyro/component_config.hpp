@@ -7,9 +7,19 @@
 #include <iterator>
 
 #include "gyro/component_types.hpp"
+#include "gyro/exact_step_check.hpp"
 #include "gyro/gyro_model.hpp"
 
 namespace gyro {
+
+// The nominal rotor has a finite exact step over a tick; a refusal names the field responsible.
+template <typename T>
+[[nodiscard]] ConfigCheck check_nominal_step(const GyroComponentConfig<T>& c) noexcept {
+  constexpr ExactStepFields kFields{"pitch_inertia", "yaw_inertia", "spin_inertia",
+                                    "friction",      "nominal_spin_hz", "tick_s"};
+  return check_exact_step(c.pitch_inertia, c.yaw_inertia, c.spin_inertia, c.friction, c.nominal_spin_hz, c.tick_s,
+                          kFields);
+}
 
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GyroComponentConfig<T>& c) noexcept {
@@ -66,16 +76,12 @@ template <typename T>
   const Count* const zero = std::find_if(std::begin(counts), std::end(counts),
                                          [](const Count& n) noexcept { return n.value == 0u; });
   if (zero != std::end(counts)) return {Status::kOutOfRange, zero->name};
-  // The rotor itself (and that the nominal rotor has a finite transition over a tick).
-  const RotorParameters<T> rotor{c.pitch_inertia, c.yaw_inertia, c.friction,
-                                 angular_momentum(c.nominal_spin_hz, c.spin_inertia)};
-  RotorTransition<T> tr;
-  if (make_transition(rotor, c.tick_s, tr) != Status::kOk) return {Status::kNumericalOverflow, "tick_s"};
-  return {};
+  return check_nominal_step(c);
 }
 
 // The exact-dynamics model the component predicts with: the configured rotor, its limits,
-// no error sources (those are the hardware's, to be caught by the residual).
+// the torquers and bearings on the gimbal axes, no error sources (those are the hardware's,
+// to be caught by the residual).
 template <typename T>
 [[nodiscard]] GyroModelConfig<T> estimator_config(const GyroComponentConfig<T>& c) noexcept {
   GyroModelConfig<T> m;
@@ -87,6 +93,7 @@ template <typename T>
   m.max_pitch_rate_rad_s = c.max_pitch_rate_rad_s;
   m.max_yaw_rate_rad_s = c.max_yaw_rate_rad_s;
   m.small_angle_limit_rad = c.small_angle_limit_rad;
+  m.torquer_axes = TorquerAxes::kGimbal;
   return m;
 }
 

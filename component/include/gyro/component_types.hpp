@@ -113,7 +113,9 @@ struct GyroComponentConfig {
 template <typename T>
 struct GuidanceInput {
   ModeRequest request{ModeRequest::kNone};
-  Vector2<T> slew_rate_cmd_rad_s{Vector2<T>::Zero()};  // (pitch, yaw), used in kFree
+  // (pitch, yaw): the spin axis's inertial rate about the inner gimbal axis y_I and about
+  // z_I = x × y_I (docs/conventions.md); used in kFree.
+  Vector2<T> slew_rate_cmd_rad_s{Vector2<T>::Zero()};
   bool nav_valid{false};                               // false: attitude and rates ignored
   Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};  // body attitude at this tick
   Vector3<T> body_rate_rad_s{Vector3<T>::Zero()};      // body (roll p, pitch q, yaw r) rates
@@ -130,9 +132,9 @@ struct GyroTelemetry {
   Vector2<T> gimbal_predicted_rad{Vector2<T>::Zero()};  // exact-dynamics prediction
   Vector2<T> residual_rad{Vector2<T>::Zero()};          // measured - predicted
   Quaternion<T> attitude_gyro_to_earth{Quaternion<T>::Identity()};  // estimated
-  Vector2<T> precession_rate_rad_s{Vector2<T>::Zero()}; // estimated (theta', psi')
+  Vector2<T> precession_rate_rad_s{Vector2<T>::Zero()}; // estimated spin-axis rate, gimbal axes
   Vector2<T> rate_cmd_rad_s{Vector2<T>::Zero()};        // after limits and stop protection
-  Vector2<T> torque_cmd{Vector2<T>::Zero()};            // written to the torquer (T1, T2)
+  Vector2<T> torque_cmd{Vector2<T>::Zero()};            // written to the torquer (inner, outer)
   Vector2<T> nutation_amplitude_rad{Vector2<T>::Zero()};
   T spin_hz{};                                          // spin used this tick
 };

@@ -56,6 +56,13 @@ template <typename T>
   return detail::axis_finite(e.pitch) && detail::axis_finite(e.yaw);
 }
 
+// Whether error_drift() depends on the gimbal angles (an erection term is set).
+template <typename T>
+[[nodiscard]] bool drift_depends_on_gimbal(const GyroErrorSources<T>& e) noexcept {
+  return e.pitch.in_plane_erection_1_s != T(0) || e.pitch.cross_plane_erection_1_s != T(0) ||
+         e.yaw.in_plane_erection_1_s != T(0) || e.yaw.cross_plane_erection_1_s != T(0);
+}
+
 // Drift of (theta', psi') from every source but torquer cross-coupling and Coulomb friction.
 //   gimbal_rad: (pitch, yaw) gimbal angles;
 //   accel: body (lateral y, normal z) accelerations in the units of `gravity`. A lateral

@@ -72,8 +72,9 @@ class GyroComponent {
     const bool fault_now = update_monitors(r.accepted, input_bad, flags);
     update_mode(request, r.accepted && nav_ok, fault_now);
 
-    const Vector2<T> rate_cmd = rate_command(nav_ok, r.accepted, flags);
-    const Vector2<T> torque = torque_command(rate_cmd, spin, flags);
+    const GimbalFrame<T> frame = frame_now();
+    const Vector2<T> rate_cmd = rate_command(frame, nav_ok, r.accepted, flags);
+    const Vector2<T> torque = torque_command(frame, rate_cmd, spin, nav_ok, flags);
     if (port_.write_torquer(torque) == PortStatus::kOk) {
       torque_held_ = torque;
       torquer_fail_ = false;
@@ -163,13 +164,14 @@ class GyroComponent {
   [[nodiscard]] bool accept_navigation(const GuidanceInput<T>& in, std::uint32_t& flags) noexcept {
     const bool usable = in.nav_valid && all_finite(in.body_rate_rad_s) &&
                         in.body_rate_rad_s.cwiseAbs().maxCoeff() <= config_.max_body_rate_rad_s &&
-                        is_rotation(in.R_earth_to_body);
+                        estimator_.check_body_attitude(in.R_earth_to_body);
     if (!usable) {
       flags |= kNavInvalid;
       if (in.nav_valid) flags |= kCommandRejected;  // marked valid, yet unusable
       return false;
     }
     R_earth_to_body_ = in.R_earth_to_body;
+    body_rate_prev_ = body_rate_;
     body_rate_ = in.body_rate_rad_s;
     return true;
   }
@@ -213,17 +215,20 @@ class GyroComponent {
     return config_.nominal_spin_hz;
   }
 
-  // Body pitch and yaw rates (q, r): what the report's uncaging and the caging loop use.
-  [[nodiscard]] Vector2<T> body_pitch_yaw_rate() const noexcept { return Vector2<T>(body_rate_(1), body_rate_(2)); }
+  // The report's uncaging of the estimator at the measured gimbal angles, rates from the body.
+  [[nodiscard]] bool start_estimator() noexcept {
+    if (estimator_.uncage_on_gimbal(R_earth_to_body_, body_rate_, measured_) != Status::kOk) return false;
+    predicted_ = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
+    predicted_cos_cone_ = estimator_.gimbal_cosine_of_cone();
+    return true;
+  }
 
   // Advances the estimator over the elapsed ticks with the torque held, compares with the
   // accepted reading, and feeds a fraction of the residual back into the attitude. In safe
   // mode the residual is not monitored (the estimator restarts when the gyro is caged again).
   void predict_and_check(std::uint64_t elapsed, T spin, bool measurable, std::uint32_t& flags) noexcept {
     if (!estimator_ready_) {
-      if (measurable) {
-        estimator_ready_ = estimator_.uncage(R_earth_to_body_, body_pitch_yaw_rate(), measured_) == Status::kOk;
-      }
+      if (measurable) estimator_ready_ = start_estimator();
       residual_.setZero();
       return;
     }
@@ -231,22 +236,24 @@ class GyroComponent {
     s.dt_s = config_.tick_s * static_cast<T>(elapsed);
     s.R_earth_to_body = R_earth_to_body_;
     s.spin_hz = spin;
+    s.body_rate_rad_s = T(0.5) * (body_rate_prev_ + body_rate_);
     if (estimator_.step_torque(s, torque_held_) != Status::kOk) {
       estimator_ready_ = false;  // re-initialised from the next good reading
       return;
     }
     if (estimator_.small_angle_exceeded()) flags |= kSmallAngleExceeded;
+    if (estimator_.gimbal_limit_exceeded()) flags |= kGimbalLimit;
+    predicted_ = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
+    predicted_cos_cone_ = estimator_.gimbal_cosine_of_cone();
     if (!measurable) return;
-    const Vector2<T> predicted(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
-    residual_ = measured_ - predicted;
+    residual_ = measured_ - predicted_;
     if (mode_ == GyroMode::kFault) {
       residual_monitor_.reset();
     } else if (residual_monitor_.update(residual_.cwiseAbs().maxCoeff() > config_.residual_limit_rad,
                                         config_.residual_persistence_ticks)) {
       flags |= kResidualFault;
     }
-    // Pitching the gyro up raises its gimbal pitch angle, yawing it right its yaw angle.
-    (void)estimator_.correct_attitude(config_.estimator_gain * residual_, R_earth_to_body_);
+    (void)estimator_.correct_gimbal_angles(config_.estimator_gain * residual_, R_earth_to_body_);
   }
 
   // The persistence monitors (gyro/persistence.hpp); true when any fault condition has lasted
@@ -271,7 +278,7 @@ class GyroComponent {
         if (request == ModeRequest::kUncage && measurable) {
           // The report's uncaging: rates from the body, attitude from the body plus the
           // measured gimbal offset.
-          if (estimator_.uncage(R_earth_to_body_, body_pitch_yaw_rate(), measured_) == Status::kOk) {
+          if (start_estimator()) {
             estimator_ready_ = true;
             residual_.setZero();
             settle_ticks_ = 0;
@@ -305,21 +312,28 @@ class GyroComponent {
 
   [[nodiscard]] static T clamp(T v, T limit) noexcept { return std::min(limit, std::max(-limit, v)); }
 
-  // Precession rates wanted this tick (theta', psi'), after limits and stop protection.
-  [[nodiscard]] Vector2<T> rate_command(bool nav_ok, bool accepted, std::uint32_t& flags) noexcept {
+  // The gimbal frame the torque law resolves on: the estimator's, else the pickoffs'.
+  [[nodiscard]] GimbalFrame<T> frame_now() const noexcept {
+    return estimator_ready_ ? estimator_.gimbal_frame_now() : gimbal_frame_at(measured_);
+  }
+
+  // Spin-axis rates wanted this tick on the gimbal axes (pitch about y_I, yaw about z_I),
+  // after limits and stop protection.
+  [[nodiscard]] Vector2<T> rate_command(const GimbalFrame<T>& frame, bool nav_ok, bool accepted,
+                                        std::uint32_t& flags) noexcept {
     Vector2<T> w = Vector2<T>::Zero();
     if (mode_ == GyroMode::kCaged) {
-      // Electrical caging: follow the body and close the gimbal angles at cage_gain (without
-      // navigation, the gimbal loop alone).
-      if (nav_ok) w = body_pitch_yaw_rate();
-      if (accepted) w -= config_.cage_gain_1_s * measured_;
+      // Electrical caging: the spin axis follows the body and the gimbal angles close at
+      // cage_gain (th' = -k th, ps' = -k ps); without navigation, the gimbal loop alone.
+      if (nav_ok) w = body_rate_on_gimbal(frame, body_rate_);
+      if (accepted) w -= config_.cage_gain_1_s * Vector2<T>(measured_(0), measured_(1) * frame.cos_pitch);
     } else if (mode_ == GyroMode::kFree) {
       w = slew_cmd_;
-      // No slewing further into a gimbal stop: withhold the outward part of the command. The
-      // gimbal angles are this tick's reading when it was accepted, else the prediction.
-      const bool predicted = !accepted && estimator_ready_;
-      const Vector2<T> g = predicted ? Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad()) : measured_;
-      if ((accepted || predicted) && std::cos(g(0)) * std::cos(g(1)) < cos_protect_) {
+      // No slewing further into a gimbal stop: withhold the outward part of the command. Near
+      // the stop is judged on the prediction (within a residual of the pickoffs, far inside
+      // the margin), the direction on this tick's reading when it was accepted.
+      const Vector2<T>& g = accepted ? measured_ : predicted_;
+      if (estimator_ready_ && predicted_cos_cone_ < cos_protect_) {
         for (int i = 0; i < 2; ++i) {
           if (w(i) * g(i) > T(0)) {
             w(i) = T(0);
@@ -331,20 +345,23 @@ class GyroComponent {
     return Vector2<T>(clamp(w(0), config_.max_pitch_rate_rad_s), clamp(w(1), config_.max_yaw_rate_rad_s));
   }
 
-  // The torque law: the exact inverse of the friction-coupled steady precession (or the
-  // report's frictionless H*rate), saturated by scaling so the slew keeps its direction.
-  [[nodiscard]] Vector2<T> torque_command(const Vector2<T>& rate, T spin, std::uint32_t& flags) const noexcept {
+  // The torque law (gyro/gimbal_geometry.hpp): torquer commands that hold the spin axis at the
+  // commanded rate against the bearings' friction on the gimbal rates (or without friction,
+  // the report's H*rate), saturated by scaling so the slew keeps its direction.
+  [[nodiscard]] Vector2<T> torque_command(const GimbalFrame<T>& frame, const Vector2<T>& rate, T spin, bool nav_ok,
+                                          std::uint32_t& flags) const noexcept {
     if (mode_ != GyroMode::kCaged && mode_ != GyroMode::kFree) return Vector2<T>::Zero();
     const T h = angular_momentum(spin, config_.spin_inertia);
     const T f = config_.friction_compensation ? config_.friction : T(0);
-    Vector2<T> torque(f * rate(0) + h * rate(1), f * rate(1) - h * rate(0));
+    const Vector2<T> body = nav_ok ? body_rate_on_gimbal(frame, body_rate_) : Vector2<T>::Zero();
+    Vector2<T> torque = torquers_for_rate(frame, h, f, rate, body);
     if (!all_finite(torque)) {
       // The products overflowed (huge rate limits or spin; f, h and the rates are finite and
-      // not all zero here): the same direction from factors scaled to at most 1, whose largest
-      // component is at least 1/sqrt(2), then saturated without overflow.
+      // not all zero here): the same direction from factors scaled to at most 1, then
+      // saturated without overflow.
       const T k = std::max(f, h);
-      const Vector2<T> u = rate / rate.cwiseAbs().maxCoeff();
-      torque = Vector2<T>((f / k) * u(0) + (h / k) * u(1), (f / k) * u(1) - (h / k) * u(0));
+      const T r = std::max(rate.cwiseAbs().maxCoeff(), body.cwiseAbs().maxCoeff());
+      torque = torquers_for_rate(frame, h / k, f / k, Vector2<T>(rate / r), Vector2<T>(body / r));
       torque = (torque / torque.cwiseAbs().maxCoeff()) * config_.max_torque;
       flags |= kTorquerSaturated;
       return torque;
@@ -369,20 +386,17 @@ class GyroComponent {
   }
 
   void publish(std::uint64_t tick, std::uint32_t flags, const Vector2<T>& rate_cmd, T spin) noexcept {
-    if (estimator_ready_) {
-      if (estimator_.gimbal_limit_exceeded()) flags |= kGimbalLimit;
-      if (nutation_unresolved(spin)) flags |= kNutationUnresolved;
-    }
+    if (estimator_ready_ && nutation_unresolved(spin)) flags |= kNutationUnresolved;
     GyroTelemetry<T>& t = telemetry_;
     t.tick = tick;
     t.mode = mode_;
     t.flags = flags;
     count(flags);
     t.gimbal_measured_rad = measured_;
-    t.gimbal_predicted_rad = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
+    t.gimbal_predicted_rad = predicted_;
     t.residual_rad = residual_;
     t.attitude_gyro_to_earth = estimator_.attitude_gyro_to_earth();
-    t.precession_rate_rad_s = estimator_.rate_rad_s();
+    t.precession_rate_rad_s = estimator_.rate_on_gimbal_rad_s();
     t.rate_cmd_rad_s = rate_cmd;
     t.torque_cmd = torque_held_;
     t.nutation_amplitude_rad = estimator_.nutation_amplitude_rad();
@@ -409,10 +423,13 @@ class GyroComponent {
   GyroModel<T> estimator_{};
   bool estimator_ready_{false};
   Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};
-  Vector3<T> body_rate_{Vector3<T>::Zero()};
+  Vector3<T> body_rate_{Vector3<T>::Zero()};       // the last usable body rate (p, q, r)
+  Vector3<T> body_rate_prev_{Vector3<T>::Zero()};  // the one before it
   Vector2<T> slew_cmd_{Vector2<T>::Zero()};  // the last usable slew command
   Vector2<T> measured_{Vector2<T>::Zero()};
   Vector2<T> residual_{Vector2<T>::Zero()};
+  Vector2<T> predicted_{Vector2<T>::Zero()};  // the estimator's gimbal angles before correction
+  T predicted_cos_cone_{T(1)};
   Vector2<T> torque_held_{Vector2<T>::Zero()};
   std::uint32_t last_sequence_{0};
   bool have_reading_{false};

@@ -13,10 +13,19 @@
 
 #include "gyro/attitude.hpp"
 #include "gyro/error_sources.hpp"
+#include "gyro/gimbal_geometry.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
 
 namespace gyro {
+
+// Where the torques act and what the friction rubs on.
+//   kGyro    the report's model: torques about the gyro's own axes, friction on its inertial
+//            rates (the rotor alone, on axes that never roll);
+//   kGimbal  the device's (gyro/gimbal_geometry.hpp): torquer commands (inner, outer) about
+//            the gimbal axes, friction on the gimbal rates relative to the body. Each step
+//            holds the resolved torque constant; the exact step itself is the report's.
+enum class TorquerAxes : std::uint8_t { kGyro = 0, kGimbal };
 
 template <typename T>
 struct GyroModelConfig {
@@ -32,6 +41,7 @@ struct GyroModelConfig {
   T small_angle_limit_rad{T(0.01)}; // the report's .01: at least 4 digits
   T gravity{T(9.80665)};            // in the units of the accelerations passed to step()
   GyroErrorSources<T> errors{};
+  TorquerAxes torquer_axes{TorquerAxes::kGyro};
 };
 
 // Names the configuration field a refusal is about (nullptr when accepted).
@@ -72,6 +82,9 @@ template <typename T>
     if (axis_limits[i] < T(0) || !(axis_limits[i] < kPi<T>)) return {Status::kOutOfRange, axis_names[i]};
   }
   if (!all_finite(c.errors)) return {Status::kNonFiniteInput, "errors"};
+  if (c.torquer_axes != TorquerAxes::kGyro && c.torquer_axes != TorquerAxes::kGimbal) {
+    return {Status::kOutOfRange, "torquer_axes"};
+  }
   return {};
 }
 
@@ -82,6 +95,7 @@ struct GyroStepInput {
   Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};  // body attitude at the END of the step
   Vector2<T> body_accel{Vector2<T>::Zero()};  // (lateral y, normal z), units of config.gravity
   T spin_hz{};                                // may vary step to step (spin-down)
+  Vector3<T> body_rate_rad_s{Vector3<T>::Zero()};  // body (p, q, r) over the step (kGimbal only)
 };
 
 // Flag bits (a word, not a union of bools, so telemetry can carry it as is).
@@ -100,6 +114,7 @@ class GyroModel {
     if (!c.ok()) return c;
     config_ = config;
     cos_cone_limit_ = std::cos(config.gimbal_cone_limit_rad);
+    drift_needs_angles_ = drift_depends_on_gimbal(config.errors);
     configured_ = true;
     uncaged_ = false;
     cache_valid_ = false;
@@ -112,12 +127,39 @@ class GyroModel {
                               const Vector2<T>& offset_rad = Vector2<T>::Zero()) noexcept {
     if (!configured_) return Status::kNotConfigured;
     if (!all_finite(body_rate_rad_s, offset_rad)) return Status::kNonFiniteInput;
-    if (!is_rotation(R_earth_to_body)) return Status::kInvalidRotation;
+    if (!check_body_attitude(R_earth_to_body)) return Status::kInvalidRotation;
     Quaternion<T> q_body(Matrix3<T>(R_earth_to_body.transpose()));  // body to earth
     Quaternion<T> q = q_body * step_rotation(offset_rad);
     q.normalize();
     q_gyro_to_earth_ = q;
     rate_rad_s_ = body_rate_rad_s;
+    isaf_angle_rad_.setZero();
+    nutation_amplitude_rad_.setZero();
+    gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
+    flags_ = gimbal_flag(gimbal_);
+    R_earth_to_body_ = R_earth_to_body;
+    frame_ = gimbal_frame(gyro_to_body(R_earth_to_body));
+    uncaged_ = true;
+    return Status::kOk;
+  }
+
+  // Uncaging at the gimbal angles (pitch, yaw): the gyro axes put on the inner gimbal frame
+  // exactly (the joint rotations, not a rotation vector), the rates those of the body across
+  // the spin axis (gimbals at rest relative to the body).
+  [[nodiscard]] Status uncage_on_gimbal(const Matrix3<T>& R_earth_to_body, const Vector3<T>& body_rate_rad_s,
+                                        const Vector2<T>& gimbal_rad) noexcept {
+    if (!configured_) return Status::kNotConfigured;
+    if (!all_finite(body_rate_rad_s, gimbal_rad)) return Status::kNonFiniteInput;
+    if (!check_body_attitude(R_earth_to_body)) return Status::kInvalidRotation;
+    Quaternion<T> q_body(Matrix3<T>(R_earth_to_body.transpose()));  // body to earth
+    const Quaternion<T> yaw(Eigen::AngleAxis<T>(gimbal_rad(1), Vector3<T>::UnitZ()));
+    const Quaternion<T> pitch(Eigen::AngleAxis<T>(gimbal_rad(0), Vector3<T>::UnitY()));
+    Quaternion<T> q = q_body * yaw * pitch;
+    q.normalize();
+    q_gyro_to_earth_ = q;
+    R_earth_to_body_ = R_earth_to_body;
+    frame_ = gimbal_frame(gyro_to_body(R_earth_to_body));
+    rate_rad_s_ = frame_.gimbal_to_gyro * body_rate_on_gimbal(frame_, body_rate_rad_s);
     isaf_angle_rad_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
@@ -133,17 +175,23 @@ class GyroModel {
     const Vector2<T> limited(clamp(slew_rate_cmd_rad_s(0), config_.max_pitch_rate_rad_s),
                              clamp(slew_rate_cmd_rad_s(1), config_.max_yaw_rate_rad_s));
     const T h = angular_momentum(in.spin_hz, config_.spin_inertia);
+    if (config_.torquer_axes == TorquerAxes::kGimbal) {
+      return step_torque(in, torquers_for_rate(frame_, h, T(0), limited, Vector2<T>(Vector2<T>::Zero())));
+    }
     return step_torque(in, torque_for_rate_frictionless(h, limited));
   }
 
-  // One step with the torquer torques (T1 pitch axis, T2 yaw axis) held over dt.
+  // One step with the torquer torques held over dt: (T1 pitch axis, T2 yaw axis) of the gyro
+  // (kGyro), or (inner, outer) about the gimbal axes (kGimbal).
   [[nodiscard]] Status step_torque(const GyroStepInput<T>& in, const Vector2<T>& torque_cmd) noexcept {
     if (!configured_) return Status::kNotConfigured;
     if (!uncaged_) return Status::kNotConfigured;
-    if (!all_finite(in.dt_s, in.spin_hz, in.body_accel, torque_cmd)) return Status::kNonFiniteInput;
+    if (!all_finite(in.dt_s, in.spin_hz, in.body_accel, torque_cmd, in.body_rate_rad_s)) {
+      return Status::kNonFiniteInput;
+    }
     if (!(in.dt_s > T(0))) return Status::kNonPositiveStep;
     if (in.spin_hz < T(0)) return Status::kNegativeAngularMomentum;
-    if (!is_rotation(in.R_earth_to_body)) return Status::kInvalidRotation;
+    if (!check_body_attitude(in.R_earth_to_body)) return Status::kInvalidRotation;
 
     const RotorParameters<T> prm{config_.pitch_inertia, config_.yaw_inertia, config_.friction,
                                  angular_momentum(in.spin_hz, config_.spin_inertia)};
@@ -160,9 +208,14 @@ class GyroModel {
       cache_valid_ = true;
     }
 
+    GimbalFrame<T> end_frame = frame_;
+    const Vector2<T> rotor_torque = (config_.torquer_axes == TorquerAxes::kGimbal)
+                                        ? torque_on_gyro_axes(in, torque_cmd, end_frame)
+                                        : torque_cmd;
+    if (drift_needs_angles_) (void)refresh_angles();  // otherwise they enter multiplied by zero
     const Vector2<T> gimbal(gimbal_.pitch_rad, gimbal_.yaw_rad);
     const Vector2<T> drift = error_drift(config_.errors, gimbal, in.body_accel, config_.gravity);
-    Vector2<T> torque = cross_coupled_torque(config_.errors, torque_cmd) +
+    Vector2<T> torque = cross_coupled_torque(config_.errors, rotor_torque) +
                         torque_for_rate_frictionless(prm.angular_momentum, drift);
     // Coulomb friction against the steady precession of all the other torques (none when
     // f = H = 0: then there is no precession, and a drift would be no torque anyway).
@@ -196,8 +249,11 @@ class GyroModel {
     isaf_angle_rad_ = s.angle_rad;
     nutation_amplitude_rad_ = amplitude;
     gimbal_ = g;
+    angles_stale_ = false;
     flags_ = step_flags;
     applied_torque_ = torque;
+    R_earth_to_body_ = in.R_earth_to_body;
+    frame_ = end_frame;
     return Status::kOk;
   }
 
@@ -206,13 +262,22 @@ class GyroModel {
   [[nodiscard]] Status correct_attitude(const Vector2<T>& angle_rad, const Matrix3<T>& R_earth_to_body) noexcept {
     if (!uncaged_) return Status::kNotConfigured;
     if (!all_finite(angle_rad)) return Status::kNonFiniteInput;
-    if (!is_rotation(R_earth_to_body)) return Status::kInvalidRotation;
+    if (!check_body_attitude(R_earth_to_body)) return Status::kInvalidRotation;
     Quaternion<T> q = q_gyro_to_earth_ * step_rotation(angle_rad);
     renormalize(q);
     q_gyro_to_earth_ = q;
-    gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
-    flags_ = (flags_ & ~static_cast<std::uint32_t>(kFlagGimbalLimit)) | gimbal_flag(gimbal_);
+    R_earth_to_body_ = R_earth_to_body;
+    angles_stale_ = true;  // read afresh when asked for (or by the next step)
     return Status::kOk;
+  }
+
+  // The same for a change of the gimbal angles (pitch, yaw): the gyro turns by pitch about the
+  // inner gimbal axis and by yaw about body z (a spin-axis turn of yaw * cos th about z_I),
+  // resolved on its own axes with the gimbal frame of the last step.
+  [[nodiscard]] Status correct_gimbal_angles(const Vector2<T>& gimbal_rad, const Matrix3<T>& R_earth_to_body) noexcept {
+    if (!all_finite(gimbal_rad)) return Status::kNonFiniteInput;
+    const Vector2<T> on_gimbal(gimbal_rad(0), gimbal_rad(1) * frame_.cos_pitch);
+    return correct_attitude(frame_.gimbal_to_gyro * on_gimbal, R_earth_to_body);
   }
 
   [[nodiscard]] const Quaternion<T>& attitude_gyro_to_earth() const noexcept { return q_gyro_to_earth_; }
@@ -220,21 +285,73 @@ class GyroModel {
     return q_gyro_to_earth_.toRotationMatrix().transpose();
   }
   [[nodiscard]] const Vector2<T>& rate_rad_s() const noexcept { return rate_rad_s_; }  // (theta', psi')
+  // The spin axis's inertial rate on the inner gimbal axes (pitch about y_I, yaw about z_I).
+  [[nodiscard]] Vector2<T> rate_on_gimbal_rad_s() const noexcept { return frame_.gimbal_to_gyro.transpose() * rate_rad_s_; }
+  [[nodiscard]] const GimbalFrame<T>& gimbal_frame_now() const noexcept { return frame_; }
   [[nodiscard]] const Vector2<T>& isaf_angle_rad() const noexcept { return isaf_angle_rad_; }  // last step
   [[nodiscard]] const Vector2<T>& nutation_amplitude_rad() const noexcept { return nutation_amplitude_rad_; }
   [[nodiscard]] const Vector2<T>& applied_torque() const noexcept { return applied_torque_; }
-  [[nodiscard]] T gimbal_pitch_rad() const noexcept { return gimbal_.pitch_rad; }
-  [[nodiscard]] T gimbal_yaw_rad() const noexcept { return gimbal_.yaw_rad; }
+  [[nodiscard]] T gimbal_pitch_rad() const noexcept { return refresh_angles().pitch_rad; }
+  [[nodiscard]] T gimbal_yaw_rad() const noexcept { return refresh_angles().yaw_rad; }
+  [[nodiscard]] T gimbal_cosine_of_cone() const noexcept { return refresh_angles().cosine_of_cone; }
   [[nodiscard]] T gimbal_cone_rad() const noexcept {
-    return std::acos(std::min(T(1), std::max(T(-1), gimbal_.cosine_of_cone)));
+    return std::acos(std::min(T(1), std::max(T(-1), refresh_angles().cosine_of_cone)));
   }
-  [[nodiscard]] std::uint32_t flags() const noexcept { return flags_; }
-  [[nodiscard]] bool gimbal_limit_exceeded() const noexcept { return (flags_ & kFlagGimbalLimit) != 0u; }
+  [[nodiscard]] std::uint32_t flags() const noexcept {
+    (void)refresh_angles();
+    return flags_;
+  }
+  [[nodiscard]] bool gimbal_limit_exceeded() const noexcept { return (flags() & kFlagGimbalLimit) != 0u; }
   [[nodiscard]] bool small_angle_exceeded() const noexcept { return (flags_ & kFlagSmallAngle) != 0u; }
   [[nodiscard]] const GyroModelConfig<T>& config() const noexcept { return config_; }
   [[nodiscard]] bool uncaged() const noexcept { return uncaged_; }
 
+  // Whether R is a rotation (gyro/attitude.hpp's is_rotation). The last matrix found to be one
+  // is remembered: the same matrix handed in again (by step and correction in one tick) is
+  // compared entry by entry instead of being checked again.
+  [[nodiscard]] bool check_body_attitude(const Matrix3<T>& R) noexcept {
+    if (have_checked_rotation_ && (R.array() == checked_rotation_.array()).all()) return true;
+    if (!is_rotation(R)) return false;
+    checked_rotation_ = R;
+    have_checked_rotation_ = true;
+    return true;
+  }
+
  private:
+  // The gimbal angles and their flag, read again after a correction (lazily: a correction
+  // followed by a step never reads them twice).
+  const GimbalAngles<T>& refresh_angles() const noexcept {
+    if (angles_stale_) {
+      gimbal_ = gimbal_angles(R_earth_to_body_, spin_axis_in_earth(q_gyro_to_earth_));
+      flags_ = (flags_ & ~static_cast<std::uint32_t>(kFlagGimbalLimit)) | gimbal_flag(gimbal_);
+      angles_stale_ = false;
+    }
+    return gimbal_;
+  }
+
+  // The gyro axes in body axes: columns x (spin), y_g, z_g.
+  [[nodiscard]] Matrix3<T> gyro_to_body(const Matrix3<T>& R_earth_to_body) const noexcept {
+    Matrix3<T> r;
+    r.noalias() = R_earth_to_body * q_gyro_to_earth_.toRotationMatrix();
+    return r;
+  }
+
+  // kGimbal: the torquers' and bearings' torque on the rotor, on the gyro's axes. The torquer
+  // axes turn with the body over the step: the mean of their two ends is held (second order
+  // in the step). The friction correction moves the model's f w onto the gimbal rates.
+  // `end_frame` receives the frame at the end of the step (spin axis of its start).
+  [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Vector2<T>& torquer,
+                                               GimbalFrame<T>& end_frame) const noexcept {
+    const GimbalFrame<T>& start = frame_;  // the last step's end (its spin axis: within a tick's turn)
+    end_frame = gimbal_frame(gyro_to_body(in.R_earth_to_body));
+    Vector2<T> t = T(0.5) * (start.gimbal_to_gyro * rotor_torque_from_torquers(start, torquer) +
+                             end_frame.gimbal_to_gyro * rotor_torque_from_torquers(end_frame, torquer));
+    const Vector2<T> rate_on_gimbal = start.gimbal_to_gyro.transpose() * rate_rad_s_;
+    t += start.gimbal_to_gyro * friction_correction(start, config_.friction, rate_on_gimbal,
+                                                    body_rate_on_gimbal(start, in.body_rate_rad_s));
+    return t;
+  }
+
   [[nodiscard]] static T clamp(T v, T limit) noexcept {
     return std::min(limit, std::max(-limit, v));
   }
@@ -256,8 +373,14 @@ class GyroModel {
   Vector2<T> isaf_angle_rad_{Vector2<T>::Zero()};
   Vector2<T> nutation_amplitude_rad_{Vector2<T>::Zero()};
   Vector2<T> applied_torque_{Vector2<T>::Zero()};
-  GimbalAngles<T> gimbal_{};
-  std::uint32_t flags_{0};
+  mutable GimbalAngles<T> gimbal_{};  // read lazily after a correction (refresh_angles)
+  mutable std::uint32_t flags_{0};
+  mutable bool angles_stale_{false};
+  bool drift_needs_angles_{false};
+  Matrix3<T> checked_rotation_{Matrix3<T>::Identity()};
+  bool have_checked_rotation_{false};
+  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};  // body at the start of the next step
+  GimbalFrame<T> frame_{};           // gimbal frame at the end of the last step
   RotorTransition<T> transition_{};  // cached while H and dt stay the same
   NutationMap<T> nutation_map_{};    // cached with it (depends on H only)
   T cached_h_{};

@@ -1,0 +1,117 @@
+// Where the report's linear model meets the device: a yaw-outer, pitch-inner gimbal whose
+// torquers act about the gimbal axes and whose bearings rub on the gimbal rates relative to
+// the body (docs/gimbal-geometry.md derives each line).
+//
+// Frames (docs/conventions.md): the spin axis x (gyro x), the gyro's own transverse axes
+// y_g, z_g (the report's, carried by the exact step: they never roll), and the inner gimbal
+// frame y_I (the pitch gimbal axis, normal to the spin axis and to body z) and z_I = x × y_I.
+// With the gimbal angles theta (pitch) and psi (yaw), in body axes:
+//   x   = ( cos th cos ps,  cos th sin ps, -sin th)
+//   y_I = (-sin ps,         cos ps,         0     )
+//   z_I = ( sin th cos ps,  sin th sin ps,  cos th)
+// The inner torquer acts about y_I; the outer one about body z, which is tilted from the
+// plane normal to the spin axis by theta, so its moment reaches the rotor as T_out / cos th
+// about z_I (the outer bearing carries the rest). Both axes turn with the gimbal frame, which
+// twists about the spin axis against the gyro's axes as the body rolls: the 2x2 rotation
+// `gimbal_to_gyro` carries components on (y_I, z_I) to components on (y_g, z_g).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "gyro/attitude.hpp"
+
+namespace gyro {
+
+template <typename T>
+struct GimbalFrame {
+  T cos_pitch{T(1)};  // cos th (never below kMinCosPitch: the gimbal-lock guard)
+  T sin_pitch{};
+  Vector3<T> y_inner_body{T(0), T(1), T(0)};  // y_I in body axes
+  Vector3<T> z_inner_body{T(0), T(0), T(1)};  // z_I in body axes
+  Matrix2<T> gimbal_to_gyro{Matrix2<T>::Identity()};  // (y_I, z_I) components -> (y_g, z_g)
+};
+
+// Below this cos th the outer torquer has no authority left (th beyond 87 deg): the geometry
+// is evaluated at this bound instead of dividing by nothing.
+template <typename T>
+inline constexpr T kMinCosPitch = T(0.05);
+
+// The gimbal frame of a gyro whose axes, in body axes, are the columns of R_gyro_to_body
+// (column 0 the spin axis).
+template <typename T>
+[[nodiscard]] GimbalFrame<T> gimbal_frame(const Matrix3<T>& R_gyro_to_body) noexcept {
+  const Vector3<T> x = R_gyro_to_body.col(0);
+  GimbalFrame<T> f;
+  const T horizontal = std::sqrt(x(0) * x(0) + x(1) * x(1));  // cos th
+  T cos_yaw = T(1), sin_yaw = T(0);
+  if (horizontal > T(0)) {
+    cos_yaw = x(0) / horizontal;
+    sin_yaw = x(1) / horizontal;
+  }
+  f.sin_pitch = -x(2);
+  f.cos_pitch = std::max(horizontal, kMinCosPitch<T>);
+  f.y_inner_body = Vector3<T>(-sin_yaw, cos_yaw, T(0));
+  f.z_inner_body = Vector3<T>(f.sin_pitch * cos_yaw, f.sin_pitch * sin_yaw, horizontal);
+  const Vector3<T> y_g = R_gyro_to_body.col(1), z_g = R_gyro_to_body.col(2);
+  f.gimbal_to_gyro << f.y_inner_body.dot(y_g), f.z_inner_body.dot(y_g), f.y_inner_body.dot(z_g),
+      f.z_inner_body.dot(z_g);
+  return f;
+}
+
+// The gimbal frame at the gimbal angles (pitch, yaw), for a gyro whose own axes are the
+// gimbal's (no twist).
+template <typename T>
+[[nodiscard]] GimbalFrame<T> gimbal_frame_at(const Vector2<T>& gimbal_rad) noexcept {
+  const T cp = std::cos(gimbal_rad(0)), sp = std::sin(gimbal_rad(0));
+  const T cy = std::cos(gimbal_rad(1)), sy = std::sin(gimbal_rad(1));
+  GimbalFrame<T> f;
+  f.sin_pitch = sp;
+  f.cos_pitch = std::max(cp, kMinCosPitch<T>);
+  f.y_inner_body = Vector3<T>(-sy, cy, T(0));
+  f.z_inner_body = Vector3<T>(sp * cy, sp * sy, cp);
+  return f;
+}
+
+// The torque the torquers put on the rotor across the spin axis, on (y_I, z_I): the inner
+// torque as it is, the outer one divided by cos th.
+template <typename T>
+[[nodiscard]] Vector2<T> rotor_torque_from_torquers(const GimbalFrame<T>& f, const Vector2<T>& torquer) noexcept {
+  return Vector2<T>(torquer(0), torquer(1) / f.cos_pitch);
+}
+
+// The body's angular velocity across the spin axis, on (y_I, z_I).
+template <typename T>
+[[nodiscard]] Vector2<T> body_rate_on_gimbal(const GimbalFrame<T>& f, const Vector3<T>& body_rate_rad_s) noexcept {
+  return Vector2<T>(f.y_inner_body.dot(body_rate_rad_s), f.z_inner_body.dot(body_rate_rad_s));
+}
+
+// Torquer commands (inner, outer) that hold the spin axis at the inertial rate `rate` (on
+// y_I, z_I: pitch, yaw) against the bearings' friction f on the gimbal rates, in steady
+// precession with angular momentum h:
+//   T_inner = h w_z + f (w_y - wb_y)
+//   T_outer = (-h w_y + f (w_z - wb_z) / cos^2 th) cos th
+// where wb is the body rate on (y_I, z_I): the gimbal rates are th' = w_y - wb_y and
+// ps' = (w_z - wb_z) / cos th. With th = 0 and the body at rest this is the report's exact
+// inverse of the friction-coupled precession, T1 = f w1 + H w2, T2 = f w2 - H w1.
+template <typename T>
+[[nodiscard]] Vector2<T> torquers_for_rate(const GimbalFrame<T>& f, T h, T friction, const Vector2<T>& rate,
+                                           const Vector2<T>& body_rate_on_gimbal_rad_s) noexcept {
+  const Vector2<T> relative = rate - body_rate_on_gimbal_rad_s;
+  const T c = f.cos_pitch;
+  return Vector2<T>(h * rate(1) + friction * relative(0), -h * rate(0) * c + friction * relative(1) / c);
+}
+
+// What the report's model (friction f on the inertial rates w, in its own axes) must be
+// given on top of the torquers' torque so that its friction is the bearings' on (y_I, z_I):
+//   f (wb_y, (wb_z - w_z sin^2 th) / cos^2 th)
+// with w the spin axis's inertial rate on (y_I, z_I).
+template <typename T>
+[[nodiscard]] Vector2<T> friction_correction(const GimbalFrame<T>& f, T friction, const Vector2<T>& rate_on_gimbal,
+                                             const Vector2<T>& body_rate_on_gimbal_rad_s) noexcept {
+  const T c2 = f.cos_pitch * f.cos_pitch;
+  return Vector2<T>(friction * body_rate_on_gimbal_rad_s(0),
+                    friction * (body_rate_on_gimbal_rad_s(1) - rate_on_gimbal(1) * f.sin_pitch * f.sin_pitch) / c2);
+}
+
+}  // namespace gyro

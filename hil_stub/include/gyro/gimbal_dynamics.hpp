@@ -1,0 +1,196 @@
+// Equations of motion of the two-axis gimbal with a prescribed body motion (Kane's form, each
+// body in its own frame; derivation in docs/gimbal-plant.md, checked against Lagrange's
+// equations derived symbolically by tests/gimbal_lagrange_check.py).
+//
+// Speeds u = (theta', psi', phi'). Each body's angular velocity is sum_j u_bj u_j + (terms
+// without u'), its angular acceleration sum_j u_bj u_j' + a_b0, and
+//   M u' = Q - sum_b u_bj . (J_b a_b0 + W_b x J_b W_b)
+// with the partial angular velocities u_bj (in inner axes: theta -> y, psi -> (-sin th, 0,
+// cos th), phi -> x for the rotor). M is sparse:
+//   [ Iy + A        0                                 0      ]
+//   [ 0      Oz + (Ix + J0) s^2 + (Iz + A) c^2     -J0 s    ]   s, c = sin, cos theta
+//   [ 0             -J0 s                             J0     ]
+// so theta'' is one division and (psi'', phi'') a 2x2 with determinant J0 D,
+// D = Oz + Ix s^2 + (Iz + A) c^2 > 0 below gimbal lock (the stop keeps |theta| <= 80 deg).
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+
+#include "gyro/gimbal_kinematics.hpp"
+#include "gyro/gimbal_plant_config.hpp"
+
+namespace gyro {
+
+// What the equations need from a configuration, folded once.
+template <typename T>
+struct GimbalParameters {
+  GimbalInertias<T> inertia{};
+  Vector2<T> friction{Vector2<T>::Zero()};  // viscous (pitch/inner, yaw/outer)
+  Vector2<T> coulomb{Vector2<T>::Zero()};   // dry friction magnitudes
+  T inv_coulomb_scale{};                    // 1 / coulomb_rate_scale_rad_s
+  SpinDrive spin_drive{SpinDrive::kMotor};
+  T motor_torque_limit{};
+  T servo_bandwidth{};
+  T spin_drag{};                            // J0 / spin_down_time_s, or 0
+  T mass_unbalance{};
+  TorqueAxes torque_axes{TorqueAxes::kGimbal};
+};
+
+template <typename T>
+[[nodiscard]] GimbalParameters<T> make_gimbal_parameters(const GimbalPlantConfig<T>& c) noexcept {
+  GimbalParameters<T> p;
+  p.inertia.outer = c.outer_gimbal_inertia;
+  p.inertia.inner = c.inner_gimbal_inertia;
+  p.inertia.rotor = Vector3<T>(c.spin_inertia, c.rotor_transverse_inertia, c.rotor_transverse_inertia);
+  p.friction = Vector2<T>(c.inner_friction, c.outer_friction);
+  p.coulomb = Vector2<T>(c.inner_coulomb_torque, c.outer_coulomb_torque);
+  p.inv_coulomb_scale = T(1) / c.coulomb_rate_scale_rad_s;
+  p.spin_drive = c.spin_drive;
+  p.motor_torque_limit = c.motor_torque_limit;
+  p.servo_bandwidth = c.spin_servo_bandwidth_rad_s;
+  p.spin_drag = c.spin_down_time_s > T(0) ? c.spin_inertia / c.spin_down_time_s : T(0);
+  p.mass_unbalance = c.mass_unbalance;
+  p.torque_axes = c.torque_axes;
+  return p;
+}
+
+// The body's motion at one instant, body axes.
+template <typename T>
+struct BodyInstant {
+  Vector3<T> rate_rad_s{Vector3<T>::Zero()};       // w = (p, q, r)
+  Vector3<T> rate_dot_rad_s2{Vector3<T>::Zero()};  // dw/dt (the same in body and inertial axes)
+  Vector3<T> specific_force{Vector3<T>::Zero()};   // what an accelerometer at the centre reads
+};
+
+// What drives the joints over a step.
+template <typename T>
+struct GimbalDrive {
+  Vector2<T> torque{Vector2<T>::Zero()};  // (T1 pitch/inner axis, T2 yaw/outer axis)
+  T spin_command_rad_s{};                 // kMotor: the relative spin the motor holds
+};
+
+template <typename T>
+struct GimbalAccelerations {
+  T pitch_acc{}, yaw_acc{}, spin_acc{};  // theta'', psi'', phi''
+  T twist_rate{};                        // chi'
+  T motor_torque{};                      // on the rotor about the spin axis
+  bool motor_saturated{false};
+  // Power of each generalised force, sum_j Q_j u_j: with the body at rest their sum is the
+  // rate of change of the kinetic energy.
+  T torquer_power{}, friction_power{}, spin_power{}, unbalance_power{};
+};
+
+namespace gimbal_detail {
+
+// Viscous plus regularised dry friction; the tanh is skipped for a bearing configured without
+// dry friction (a configuration constant: every tick still costs the same).
+template <typename T>
+[[nodiscard]] T bearing_friction(T rate, T viscous, T coulomb, T inv_scale) noexcept {
+  const T viscous_part = -viscous * rate;
+  return coulomb > T(0) ? viscous_part - coulomb * std::tanh(rate * inv_scale) : viscous_part;
+}
+
+// Generalised forces (theta, psi) of a torque on the inner gimbal (its reaction on the body,
+// whose motion is prescribed, does no work in the equations): its y component, and its
+// component along the yaw axis.
+template <typename T>
+[[nodiscard]] Vector2<T> on_joints(const GimbalFrames<T>& f, const Vector3<T>& torque_inner) noexcept {
+  return Vector2<T>(torque_inner(1), f.yaw_axis_in_inner().dot(torque_inner));
+}
+
+}  // namespace gimbal_detail
+
+// theta'', psi'', phi'' (and the motor torque, the twist rate and the powers) at one instant.
+template <typename T>
+[[nodiscard]] GimbalAccelerations<T> gimbal_accelerations(const GimbalParameters<T>& prm, const GimbalJointState<T>& s,
+                                                          const GimbalDrive<T>& drive,
+                                                          const BodyInstant<T>& body) noexcept {
+  using gimbal_detail::bearing_friction;
+  using gimbal_detail::on_joints;
+  const GimbalInertias<T>& j = prm.inertia;
+  const T th_d = s.pitch_rate_rad_s, ps_d = s.yaw_rate_rad_s, ph_d = s.spin_rate_rad_s;
+  const GimbalFrames<T> f = gimbal_frames(s.pitch_rad, s.yaw_rad);
+  const GimbalBodyRates<T> w = gimbal_body_rates(f, s, body.rate_rad_s);
+
+  // a_b0: each body's angular acceleration with the joint accelerations set to zero.
+  const Vector3<T> w_body_outer = f.body_to_outer(body.rate_rad_s);
+  Vector3<T> a_outer = f.body_to_outer(body.rate_dot_rad_s2);
+  a_outer(0) += ps_d * w_body_outer(1);  // psi' (w x z)
+  a_outer(1) -= ps_d * w_body_outer(0);
+  const Vector3<T> w_outer_inner = f.outer_to_inner(w.outer);
+  Vector3<T> a_inner = f.outer_to_inner(a_outer);
+  a_inner(0) -= th_d * w_outer_inner(2);  // theta' (W_O x y)
+  a_inner(2) += th_d * w_outer_inner(0);
+  Vector3<T> a_rotor = a_inner;
+  a_rotor(1) += ph_d * w.inner(2);  // phi' (W_I x x)
+  a_rotor(2) -= ph_d * w.inner(1);
+
+  // J_b a_b0 + W_b x J_b W_b for the outer gimbal (z needed) and inner gimbal plus rotor.
+  const Vector3<T> jo_w = j.outer.cwiseProduct(w.outer);
+  const T outer_z = j.outer(2) * a_outer(2) + w.outer(0) * jo_w(1) - w.outer(1) * jo_w(0);
+  const Vector3<T> assembly = j.inner.cwiseProduct(a_inner) + w.inner.cross(j.inner.cwiseProduct(w.inner)) +
+                              j.rotor.cwiseProduct(a_rotor) + w.rotor.cross(j.rotor.cwiseProduct(w.rotor));
+  const Vector3<T> yaw_axis = f.yaw_axis_in_inner();
+
+  // Generalised forces on (theta, psi).
+  Vector2<T> q_torquer, q_friction;
+  if (prm.torque_axes == TorqueAxes::kGimbal) {
+    q_torquer = drive.torque;
+    q_friction = Vector2<T>(bearing_friction(th_d, prm.friction(0), prm.coulomb(0), prm.inv_coulomb_scale),
+                            bearing_friction(ps_d, prm.friction(1), prm.coulomb(1), prm.inv_coulomb_scale));
+  } else {
+    // The gyro's non-rolling pitch and yaw axes: the inner gimbal's y, z turned by chi about x.
+    const T sc = std::sin(s.twist_rad), cc = std::cos(s.twist_rad);
+    const Vector3<T> y_gyro(T(0), cc, sc), z_gyro(T(0), -sc, cc);
+    const T w1 = w.inner.dot(y_gyro), w2 = w.inner.dot(z_gyro);
+    q_torquer = on_joints(f, Vector3<T>(drive.torque(0) * y_gyro + drive.torque(1) * z_gyro));
+    const T fr1 = bearing_friction(w1, prm.friction(0), prm.coulomb(0), prm.inv_coulomb_scale);
+    const T fr2 = bearing_friction(w2, prm.friction(1), prm.coulomb(1), prm.inv_coulomb_scale);
+    q_friction = on_joints(f, Vector3<T>(fr1 * y_gyro + fr2 * z_gyro));
+  }
+  // Unbalance: -m d x_I x f on the rotor = m d (0, f_z, -f_y) in inner axes.
+  const Vector3<T> f_inner = f.outer_to_inner(f.body_to_outer(body.specific_force));
+  const Vector2<T> q_unbalance =
+      on_joints(f, Vector3<T>(T(0), prm.mass_unbalance * f_inner(2), -prm.mass_unbalance * f_inner(1)));
+  const T drag = -prm.spin_drag * ph_d;
+
+  const T b_pitch = q_torquer(0) + q_friction(0) + q_unbalance(0) - assembly(1);
+  const T b_yaw = q_torquer(1) + q_friction(1) + q_unbalance(1) - outer_z - yaw_axis.dot(assembly);
+  const T b_spin = drag - j.rotor(0) * a_rotor(0);  // (W_R x J_R W_R) . x = 0 (axisymmetric)
+
+  GimbalAccelerations<T> out;
+  out.pitch_acc = b_pitch / (j.inner(1) + j.rotor(1));
+  const T s2 = f.sp * f.sp, c2 = f.cp * f.cp;
+  const T d = j.outer(2) + j.inner(0) * s2 + (j.inner(2) + j.rotor(1)) * c2;  // det / J0
+  bool free_spin = prm.spin_drive == SpinDrive::kFree;
+  if (!free_spin) {
+    const T spin_acc = prm.servo_bandwidth * (drive.spin_command_rad_s - ph_d);
+    const T yaw_acc = (b_yaw + j.rotor(0) * f.sp * spin_acc) / (d + j.rotor(0) * s2);
+    const T needed = j.rotor(0) * (spin_acc - f.sp * yaw_acc) - b_spin;
+    if (std::abs(needed) <= prm.motor_torque_limit) {
+      out.yaw_acc = yaw_acc;
+      out.spin_acc = spin_acc;
+      out.motor_torque = needed;
+    } else {
+      out.motor_torque = std::copysign(prm.motor_torque_limit, needed);
+      out.motor_saturated = true;
+      free_spin = true;
+    }
+  }
+  if (free_spin) {
+    const T b = b_spin + out.motor_torque;
+    out.yaw_acc = (b_yaw + f.sp * b) / d;
+    out.spin_acc = b / j.rotor(0) + f.sp * out.yaw_acc;
+  }
+  out.twist_rate = -w.inner(0);
+  const Vector2<T> rates(th_d, ps_d);
+  out.torquer_power = q_torquer.dot(rates);
+  out.friction_power = q_friction.dot(rates);
+  out.spin_power = (out.motor_torque + drag) * ph_d;
+  out.unbalance_power = q_unbalance.dot(rates);
+  return out;
+}
+
+}  // namespace gyro

@@ -1,0 +1,149 @@
+// Configuration of the nonlinear two-axis gimbal plant (gyro/gimbal_plant.hpp): the device's
+// inertias, bearings, spin drive, mass unbalance and stop, the envelope of inputs it accepts,
+// and the accuracy of its integration. docs/gimbal-plant.md derives the equations and says how
+// each field enters them; docs/conventions.md fixes the frames and signs.
+//
+// Units: any consistent set (SI below: kg m^2, N m, N m s, rad/s, m/s^2).
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+
+#include "gyro/gyro_model.hpp"  // ConfigCheck (and Status, all_finite, kPi, Vector2/3); no model code
+
+namespace gyro {
+
+// How the rotor's spin relative to the inner gimbal is driven.
+enum class SpinDrive : std::uint8_t {
+  kMotor = 0,  // a motor holds the commanded relative spin rate, within its torque limit
+  kFree,       // no motor: the rotor runs down against its bearing drag (if any)
+};
+
+// About which axes the torquers push and the gimbal friction acts.
+enum class TorqueAxes : std::uint8_t {
+  kGimbal = 0,  // the device: T1 about the inner gimbal axis, T2 about the outer axis (body z),
+                // friction on each gimbal's rate relative to its carrier
+  kGyro,        // the report's idealisation: T1, T2 about the gyro's own non-rolling pitch and
+                // yaw axes, friction on the gyro's inertial rates about them
+};
+
+template <typename T>
+struct GimbalPlantConfig {
+  // Rotor, axisymmetric about the spin axis (inner gimbal x).
+  T spin_inertia{};              // J0, about the spin axis
+  T rotor_transverse_inertia{};  // A, about any axis normal to it through the gimbal centre
+  // Principal moments of each gimbal about its own axes (x, y, z); zero for a massless gimbal.
+  Vector3<T> inner_gimbal_inertia{Vector3<T>::Zero()};  // inner: y is the pitch axis
+  Vector3<T> outer_gimbal_inertia{Vector3<T>::Zero()};  // outer: z is the yaw axis (body z)
+
+  // Bearing friction on the gimbal rates (relative to the carrier in kGimbal axes).
+  T inner_friction{};          // viscous, torque per rad/s, pitch axis
+  T outer_friction{};          // viscous, yaw axis
+  T inner_coulomb_torque{};    // dry friction magnitude, pitch axis
+  T outer_coulomb_torque{};    // dry friction magnitude, yaw axis
+  // Dry friction is C tanh(rate / scale): smooth, so a fixed-step high-order method stays
+  // accurate; within 0.5 % of C sign(rate) once |rate| > 3 scale, viscous C/scale below.
+  T coulomb_rate_scale_rad_s{T(0.01)};
+
+  // Spin, relative to the inner gimbal.
+  SpinDrive spin_drive{SpinDrive::kMotor};
+  T max_spin_hz{};                 // the fastest spin start() and the motor accept
+  T motor_torque_limit{};          // kMotor: the largest torque the motor gives (> 0)
+  T spin_servo_bandwidth_rad_s{};  // kMotor: spin acceleration = bandwidth * (command - spin);
+                                   // 0 holds the spin's acceleration at zero
+  T spin_down_time_s{};            // bearing drag J0 / spin_down_time_s (0: no drag)
+
+  // Mass unbalance of the rotor along +spin axis (mass times offset): torque
+  // -mass_unbalance * spin_axis x specific_force on the rotor (g-sensitive drift).
+  T mass_unbalance{};
+
+  // Mechanical stop on the total cone angle between spin axis and body x.
+  T stop_cone_rad{};      // 0 < stop <= kMaxGimbalStopCone (gimbal lock stays out of reach)
+  T stop_restitution{};   // in [0, 1]: 0 a dead stop, 1 an elastic bounce
+
+  TorqueAxes torque_axes{TorqueAxes::kGimbal};
+
+  // Envelope of step inputs; beyond it a step is refused (kOutOfRange).
+  T max_body_rate_rad_s{};   // |(p, q, r)|; also enters the sub-step rule
+  T max_torque{};            // |T1|, |T2|
+  T max_specific_force{};    // |specific force|
+
+  // Integration accuracy: the largest phase (rad) of the fastest motion per sub-step.
+  // docs/gimbal-plant.md tabulates the error against it.
+  T max_substep_phase_rad{T(0.5)};
+};
+
+// 80 deg: the outer axis's effective inertia falls as cos^2 of the pitch angle (gimbal lock at
+// 90 deg); a stop up to here keeps it above 3 % of its value at zero.
+template <typename T>
+inline constexpr T kMaxGimbalStopCone = T(1.3962634015954636);
+// The most sub-steps a configuration may ask for per tick (bounds the cost of one step).
+inline constexpr int kMaxGimbalSubsteps = 4096;
+
+namespace gimbal_detail {
+// Principal moments of a rigid body: each no larger than the sum of the other two.
+template <typename T>
+[[nodiscard]] bool is_physical(const Vector3<T>& m) noexcept {
+  return m(0) <= m(1) + m(2) && m(1) <= m(0) + m(2) && m(2) <= m(0) + m(1);
+}
+}  // namespace gimbal_detail
+
+template <typename T>
+[[nodiscard]] ConfigCheck check(const GimbalPlantConfig<T>& c) noexcept {
+  struct Field {
+    T value;
+    const char* name;
+    bool zero_allowed;
+    Status if_not;
+  };
+  const Field fields[] = {
+      {c.spin_inertia, "spin_inertia", false, Status::kNonPositiveInertia},
+      {c.rotor_transverse_inertia, "rotor_transverse_inertia", false, Status::kNonPositiveInertia},
+      {c.inner_friction, "inner_friction", true, Status::kNegativeFriction},
+      {c.outer_friction, "outer_friction", true, Status::kNegativeFriction},
+      {c.inner_coulomb_torque, "inner_coulomb_torque", true, Status::kNegativeFriction},
+      {c.outer_coulomb_torque, "outer_coulomb_torque", true, Status::kNegativeFriction},
+      {c.coulomb_rate_scale_rad_s, "coulomb_rate_scale_rad_s", false, Status::kOutOfRange},
+      {c.max_spin_hz, "max_spin_hz", false, Status::kOutOfRange},
+      {c.spin_servo_bandwidth_rad_s, "spin_servo_bandwidth_rad_s", true, Status::kOutOfRange},
+      {c.spin_down_time_s, "spin_down_time_s", true, Status::kOutOfRange},
+      {c.stop_cone_rad, "stop_cone_rad", false, Status::kOutOfRange},
+      {c.stop_restitution, "stop_restitution", true, Status::kOutOfRange},
+      {c.max_body_rate_rad_s, "max_body_rate_rad_s", false, Status::kOutOfRange},
+      {c.max_torque, "max_torque", false, Status::kOutOfRange},
+      {c.max_specific_force, "max_specific_force", false, Status::kOutOfRange},
+      {c.max_substep_phase_rad, "max_substep_phase_rad", false, Status::kOutOfRange},
+  };
+  for (const Field& f : fields) {
+    if (!std::isfinite(f.value)) return {Status::kNonFiniteInput, f.name};
+    if (f.zero_allowed ? f.value < T(0) : !(f.value > T(0))) return {f.if_not, f.name};
+  }
+  if (!(c.spin_inertia <= T(2) * c.rotor_transverse_inertia)) {
+    return {Status::kOutOfRange, "rotor_transverse_inertia"};  // J0 <= 2A for a rigid rotor
+  }
+  const Vector3<T>* gimbals[] = {&c.inner_gimbal_inertia, &c.outer_gimbal_inertia};
+  const char* gimbal_names[] = {"inner_gimbal_inertia", "outer_gimbal_inertia"};
+  for (int i = 0; i < 2; ++i) {
+    if (!all_finite(*gimbals[i])) return {Status::kNonFiniteInput, gimbal_names[i]};
+    if (gimbals[i]->minCoeff() < T(0)) return {Status::kNonPositiveInertia, gimbal_names[i]};
+    if (!gimbal_detail::is_physical(*gimbals[i])) return {Status::kOutOfRange, gimbal_names[i]};
+  }
+  if (!std::isfinite(c.mass_unbalance)) return {Status::kNonFiniteInput, "mass_unbalance"};
+  if (c.spin_drive != SpinDrive::kMotor && c.spin_drive != SpinDrive::kFree) {
+    return {Status::kOutOfRange, "spin_drive"};
+  }
+  if (c.torque_axes != TorqueAxes::kGimbal && c.torque_axes != TorqueAxes::kGyro) {
+    return {Status::kOutOfRange, "torque_axes"};
+  }
+  if (c.spin_drive == SpinDrive::kMotor) {
+    if (!std::isfinite(c.motor_torque_limit)) return {Status::kNonFiniteInput, "motor_torque_limit"};
+    if (!(c.motor_torque_limit > T(0))) return {Status::kOutOfRange, "motor_torque_limit"};
+  }
+  if (!(c.stop_cone_rad <= kMaxGimbalStopCone<T>)) return {Status::kOutOfRange, "stop_cone_rad"};
+  if (!(c.stop_restitution <= T(1))) return {Status::kOutOfRange, "stop_restitution"};
+  if (!(c.max_substep_phase_rad <= T(2))) return {Status::kOutOfRange, "max_substep_phase_rad"};
+  return {};
+}
+
+}  // namespace gyro

@@ -1,0 +1,134 @@
+// The pickoff electronics of the SIL stub: what turns the true gimbal angles into the
+// conversion the port returns.
+//
+// Per axis: truth -> first-order lag (exact per tick: y += (1 - exp(-dt/lag)) (x - y)) ->
+// + bias (+ bias-jump faults) -> + white Gaussian noise -> saturation at +-range -> rounding to
+// the nearest lsb (and, when both are set, clamped to the largest code within the range).
+// Sequence +1 per conversion, starting at 1 for the power-up conversion. Faults (from the
+// tick's ActiveFaults): stuck converters hold their output, a dropout repeats the whole
+// reading, invalid readings carry NaN angles (valid bit kept for one axis, cleared for both).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "gyro/fault_schedule.hpp"
+#include "gyro/gyro_port.hpp"
+#include "gyro/noise.hpp"
+
+namespace gyro {
+
+template <typename T>
+struct PickoffModel {
+  T lsb_rad{};                              // quantisation step (0 = none)
+  Vector2<T> bias_rad{Vector2<T>::Zero()};  // (pitch, yaw)
+  T lag_s{};                                // first-order lag time constant (0 = none)
+  T noise_rad{};                            // 1-sigma white noise per reading
+  T range_rad{};                            // readings saturate at +-range (0 = none)
+};
+
+template <typename T>
+[[nodiscard]] ConfigCheck check(const PickoffModel<T>& p) noexcept {
+  struct NonNegative {
+    T value;
+    const char* name;
+  };
+  const NonNegative fields[] = {
+      {p.lsb_rad, "pickoff.lsb_rad"},
+      {p.lag_s, "pickoff.lag_s"},
+      {p.noise_rad, "pickoff.noise_rad"},
+      {p.range_rad, "pickoff.range_rad"},
+  };
+  for (const NonNegative& n : fields) {
+    if (!std::isfinite(n.value)) return {Status::kNonFiniteInput, n.name};
+    if (n.value < T(0)) return {Status::kOutOfRange, n.name};
+  }
+  if (!all_finite(p.bias_rad)) return {Status::kNonFiniteInput, "pickoff.bias_rad"};
+  if (p.range_rad > T(0) && p.lsb_rad > p.range_rad) return {Status::kOutOfRange, "pickoff.lsb_rad"};
+  return {};
+}
+
+// Noise stream ids (one per axis and per random term).
+enum class NoiseStreamId : std::uint64_t {
+  kPickoffNoisePitch = 1,
+  kPickoffNoiseYaw = 2,
+};
+
+template <typename T>
+class PickoffElectronics {
+ public:
+  void configure(const PickoffModel<T>& model, T tick_s, std::uint64_t seed) noexcept {
+    model_ = model;
+    lag_gain_ = (model.lag_s > T(0)) ? -std::expm1(-tick_s / model.lag_s) : T(1);
+    noise_[0] = NoiseStream<T>(seed, static_cast<std::uint64_t>(NoiseStreamId::kPickoffNoisePitch));
+    noise_[1] = NoiseStream<T>(seed, static_cast<std::uint64_t>(NoiseStreamId::kPickoffNoiseYaw));
+    power_down();
+  }
+
+  void power_down() noexcept {
+    lag_out_.setZero();
+    converter_out_.setZero();
+    reading_ = PickoffReading<T>{};
+  }
+
+  // One conversion at `tick` of the true gimbal angles; `spin_hz` is the readback reported
+  // with it (spin_valid false: no readback). The power-up conversion ignores lag, stuck
+  // converters and dropouts.
+  void sample(const Vector2<T>& truth_rad, std::uint64_t tick, const ActiveFaults<T>& faults, bool power_up,
+              T spin_hz, bool spin_valid) noexcept {
+    if (power_up || !(model_.lag_s > T(0))) {
+      lag_out_ = truth_rad;  // no lag: exactly the truth (x + (y - x) need not round to y)
+    } else {
+      lag_out_ += lag_gain_ * (truth_rad - lag_out_);
+    }
+    Vector2<T> v = lag_out_ + model_.bias_rad + faults.bias_jump_rad;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto axis = static_cast<Eigen::Index>(i);
+      if (model_.noise_rad > T(0)) v(axis) += model_.noise_rad * noise_[i].gaussian(tick);
+      if (power_up || !faults.stuck[i]) converter_out_(axis) = quantise(v(axis));  // stuck: held
+    }
+    if (faults.dropout && !power_up) return;  // stale: nothing new, sequence included
+
+    PickoffReading<T> r;
+    r.gimbal_angle_rad = converter_out_;
+    r.sequence = reading_.sequence + 1u;
+    r.valid = !faults.invalid;
+    for (std::size_t i = 0; i < 2; ++i) {
+      if (faults.invalid || faults.nan_angle[i]) {
+        r.gimbal_angle_rad(static_cast<Eigen::Index>(i)) = std::numeric_limits<T>::quiet_NaN();
+      }
+    }
+    r.spin_valid = spin_valid;
+    r.spin_hz = spin_valid ? spin_hz : T(0);
+    reading_ = r;
+  }
+
+  [[nodiscard]] const PickoffReading<T>& reading() const noexcept { return reading_; }
+
+ private:
+  [[nodiscard]] T quantise(T v) const noexcept {
+    if (model_.range_rad > T(0)) v = std::min(model_.range_rad, std::max(-model_.range_rad, v));
+    if (model_.lsb_rad > T(0)) {
+      T code = std::round(v / model_.lsb_rad);
+      if (model_.range_rad > T(0)) {
+        const T max_code = std::floor(model_.range_rad / model_.lsb_rad);
+        code = std::min(max_code, std::max(-max_code, code));
+      }
+      v = code * model_.lsb_rad;
+    }
+    return v;
+  }
+
+  PickoffModel<T> model_{};
+  T lag_gain_{T(1)};
+  std::array<NoiseStream<T>, 2> noise_{};
+  Vector2<T> lag_out_{Vector2<T>::Zero()};
+  Vector2<T> converter_out_{Vector2<T>::Zero()};
+  PickoffReading<T> reading_{};
+};
+
+}  // namespace gyro

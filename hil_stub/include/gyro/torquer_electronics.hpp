@@ -1,0 +1,41 @@
+// The torquer electronics of the SIL stub: the torque that acts on the gimbals for a command
+// latched by write_torquer (zero-order hold): command -> scale factor -> saturation ->
+// torquer faults (dead: 0, saturated: pinned at the fault's level).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "gyro/fault_schedule.hpp"
+
+namespace gyro {
+
+template <typename T>
+struct TorquerModel {
+  Vector2<T> scale_factor{Vector2<T>::Ones()};  // actual/commanded torque per axis
+  T max_torque{};                               // saturation per axis (0 = none)
+};
+
+template <typename T>
+[[nodiscard]] ConfigCheck check(const TorquerModel<T>& t) noexcept {
+  if (!std::isfinite(t.max_torque)) return {Status::kNonFiniteInput, "torquer.max_torque"};
+  if (t.max_torque < T(0)) return {Status::kOutOfRange, "torquer.max_torque"};
+  if (!all_finite(t.scale_factor)) return {Status::kNonFiniteInput, "torquer.scale_factor"};
+  return {};
+}
+
+template <typename T>
+[[nodiscard]] Vector2<T> torquer_output(const TorquerModel<T>& model, const Vector2<T>& command,
+                                        const ActiveFaults<T>& faults) noexcept {
+  Vector2<T> t = command.cwiseProduct(model.scale_factor);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto axis = static_cast<Eigen::Index>(i);
+    if (model.max_torque > T(0)) t(axis) = std::min(model.max_torque, std::max(-model.max_torque, t(axis)));
+    if (faults.dead_torquer[i]) t(axis) = T(0);
+    if (faults.saturated_torquer[i]) t(axis) = faults.saturated_level(axis);
+  }
+  return t;
+}
+
+}  // namespace gyro

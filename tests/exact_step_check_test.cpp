@@ -1,0 +1,113 @@
+// The configuration checks of the component and the SIL stub refuse a rotor whose exact step
+// over one tick is not representable, and name the field responsible (not always the tick,
+// as the component's check did), in double and float.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gyro/component_config.hpp"
+#include "gyro/seeker_example.hpp"
+#include "gyro/simulated_gyro.hpp"
+
+namespace gyro {
+namespace {
+
+template <typename T>
+struct Case {
+  std::function<void(T& j1, T& j2, T& j0, T& f, T& spin, T& tick)> mutate;
+  const char* culprit;  // pitch_inertia, yaw_inertia, spin_inertia, friction, spin, tick
+};
+
+// Overflowing cases in `T`, each with the input responsible.
+template <typename T>
+std::vector<Case<T>> overflowing_cases() {
+  constexpr bool kDouble = sizeof(T) == 8;
+  const T tiny = kDouble ? T(5e-324) : T(1e-45);   // the smallest subnormal: 1/J is infinite
+  const T small = kDouble ? T(1e-300) : T(1e-36);  // 1/J finite, the rate terms are not
+  const T huge = kDouble ? T(1e300) : T(1e36);
+  return {
+      {[=](T& j1, T&, T&, T&, T&, T&) { j1 = tiny; }, "pitch_inertia"},
+      {[=](T& j1, T&, T&, T&, T&, T&) { j1 = small; }, "pitch_inertia"},
+      {[=](T&, T& j2, T&, T&, T&, T&) { j2 = tiny; }, "yaw_inertia"},
+      {[=](T&, T&, T& j0, T&, T&, T&) { j0 = huge; }, "spin_inertia"},
+      {[=](T&, T&, T&, T& f, T&, T&) { f = huge; }, "friction"},
+      {[=](T&, T&, T&, T&, T& spin, T&) { spin = huge; }, "spin"},
+      {[=](T&, T&, T&, T&, T& spin, T&) { spin = kDouble ? T(1e160) : T(1e20); }, "spin"},  // H finite, H^2 not
+      {[=](T&, T&, T&, T&, T&, T& tick) { tick = huge; }, "tick"},
+  };
+}
+
+template <typename T>
+class ExactStepCheck : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(ExactStepCheck, Scalars);
+
+TYPED_TEST(ExactStepCheck, GivenAComponentRotorWhoseStepOverflowsWhenConfiguredThenTheFieldResponsibleIsNamed) {
+  using T = TypeParam;
+  for (const Case<T>& k : overflowing_cases<T>()) {
+    GyroComponentConfig<T> c = SeekerExample<T>::component();
+    c.cage_gain_1_s = T(0);  // gain * tick <= 1 would otherwise refuse a long tick first
+    k.mutate(c.pitch_inertia, c.yaw_inertia, c.spin_inertia, c.friction, c.nominal_spin_hz, c.tick_s);
+    if (std::string(k.culprit) == "spin") c.min_spin_hz = T(0);
+    const std::string expected = std::string(k.culprit) == "spin"   ? "nominal_spin_hz"
+                                 : std::string(k.culprit) == "tick" ? "tick_s"
+                                                                    : k.culprit;
+    SCOPED_TRACE(expected);
+    const ConfigCheck r = check(c);
+    EXPECT_EQ(r.status, Status::kNumericalOverflow);
+    ASSERT_NE(r.field, nullptr);
+    EXPECT_EQ(std::string(r.field), expected);
+  }
+}
+
+TYPED_TEST(ExactStepCheck, GivenAStubRotorWhoseStepOverflowsWhenConfiguredThenRefusedNamingTheFieldAndNothingStarts) {
+  using T = TypeParam;
+  for (const Case<T>& k : overflowing_cases<T>()) {
+    SimulatedGyroConfig<T> c = SeekerExample<T>::stub();
+    c.plant = PlantKind::kReport;  // the exact step is the report's plant's
+    k.mutate(c.gyro.pitch_inertia, c.gyro.yaw_inertia, c.gyro.spin_inertia, c.gyro.friction, c.spin_hz, c.tick_s);
+    const std::string expected = std::string(k.culprit) == "spin"   ? "spin_hz"
+                                 : std::string(k.culprit) == "tick" ? "tick_s"
+                                                                    : k.culprit;
+    SCOPED_TRACE(expected);
+    SimulatedGyro<T> sim;
+    const ConfigCheck r = sim.configure(c);
+    EXPECT_EQ(r.status, Status::kNumericalOverflow);
+    ASSERT_NE(r.field, nullptr);
+    EXPECT_EQ(std::string(r.field), expected);
+    EXPECT_EQ(sim.start(Matrix3<T>::Identity(), Vector2<T>::Zero()), Status::kNotConfigured);
+  }
+}
+
+// What the check accepts, the stub advances: the largest spins either side of the limit.
+TEST(ExactStepCheck, GivenTheLargestSpinTheStubAcceptsThenItsFirstStepSucceeds) {
+  SimulatedGyroConfig<double> c = SeekerExample<double>::stub();
+  c.plant = PlantKind::kReport;  // the exact step is the report's plant's
+  double lo = 1e3, hi = 1e300;  // accepted, refused
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo) * std::sqrt(hi);
+    c.spin_hz = mid;
+    (check(c).ok() ? lo : hi) = mid;
+  }
+  c.spin_hz = lo;
+  SimulatedGyro<double> sim;
+  ASSERT_TRUE(sim.configure(c).ok()) << lo;
+  ASSERT_EQ(sim.start(Matrix3<double>::Identity(), Vector2<double>::Zero()), Status::kOk);
+  EXPECT_EQ(sim.advance(1, Matrix3<double>::Identity(), Vector2<double>::Zero()), Status::kOk) << lo;
+  c.spin_hz = hi;
+  EXPECT_EQ(check(c).status, Status::kNumericalOverflow) << hi;
+  EXPECT_GT(lo, 1e100);  // a real limit of the representation, not a tight physical one
+}
+
+TEST(ExactStepCheck, GivenTheShippedExampleGyrosThenBothChecksAccept) {
+  EXPECT_TRUE(check(SeekerExample<double>::component()).ok());
+  EXPECT_TRUE(check(SeekerExample<float>::component()).ok());
+  EXPECT_TRUE(check(SeekerExample<double>::stub()).ok());
+  EXPECT_TRUE(check(SeekerExample<float>::stub()).ok());
+}
+
+}  // namespace
+}  // namespace gyro

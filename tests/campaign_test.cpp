@@ -532,6 +532,92 @@ TEST(CampaignRun, GivenAFaultScenarioThenTheLatencyIsWhatTheTimeHistoryShows) {
   EXPECT_LT(*r.metrics->max_residual_healthy_rad, 0.005);
 }
 
+// Runs campaign `j`'s run 0 with its time history; the CSV's text through `csv`.
+RunResult run_with_history(const json& j, std::string& csv) {
+  const Campaign c = parse(j);
+  const fs::path tmp = fs::temp_directory_path() / ("campaign_test_h_" + std::to_string(::getpid()) + ".csv");
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) return RunResult{};
+  sil::CsvWriter w(f);
+  sil::CsvObserver history(w);
+  RunResult r = execute_run(c, 0, &history);
+  std::fclose(f);
+  csv = slurp(tmp);
+  fs::remove(tmp);
+  return r;
+}
+
+// The CSV's rows as columns by name.
+std::map<std::string, std::vector<std::string>> columns_of(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::istringstream h(line);
+  for (std::string n; std::getline(h, n, ',');) names.push_back(n);
+  std::map<std::string, std::vector<std::string>> out;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::size_t i = 0;
+    for (std::string cell; std::getline(row, cell, ',') && i < names.size(); ++i) out[names[i]].push_back(cell);
+  }
+  return out;
+}
+
+TEST(CampaignRun, GivenTheEnvelopeAndPersistenceMetricsThenTheyAreWhatTheTimeHistoryShows) {
+  // GIVEN the bias-jump scenario (0.01 rad at 0.6 s) whose residual limit is set at 1.2 times
+  // the largest healthy residual, so that half the limit is crossed and the limit is not
+  json j = valid_campaign();
+  j["base"] = "scenarios/fault_bias_jump.json";
+  j["dispersions"] = json::array();
+  j.erase("fault_injection");
+  j["criteria"] = json::array();
+  j["runs"] = 1;
+  j["metrics"] = {{"healthy_residual", true}, {"residual_persistence", true}, {"envelope", true}, {"safe_mode", true}};
+  std::string csv;
+  const RunResult first = run_with_history(j, csv);
+  ASSERT_EQ(first.status, RunStatus::kOk) << first.reason;
+  const double limit = 1.2 * *first.metrics->max_residual_healthy_rad;
+  j["set"] = {{"component.residual_limit_rad", limit}};
+
+  // WHEN it runs with its time history
+  const RunResult r = run_with_history(j, csv);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.reason;
+  ASSERT_TRUE(r.metrics.has_value());
+  EXPECT_FALSE(r.metrics->false_alarm);
+
+  // THEN the time history, replayed here, gives the same figures: the leaky count (+2 a tick
+  // above half the limit, -1 below) over free ticks before 0.6 s, the largest cone over the
+  // run and the largest one-tick change of a gimbal angle before 0.6 s
+  const auto col = columns_of(csv);
+  const std::vector<std::string>& mode = col.at("mode");
+  const auto num = [&](const char* name, std::size_t k) { return std::stod(col.at(name)[k]); };
+  std::uint64_t fill = 0, peak = 0;
+  double cone = 0, step = 0;
+  for (std::size_t k = 0; k < mode.size(); ++k) {
+    const double t = num("t", k);
+    const bool healthy = t < 0.6 - 1e-9;
+    if (mode[k] == "free" && healthy) {
+      const double res = std::max(std::abs(num("residual_pitch", k)), std::abs(num("residual_yaw", k)));
+      fill = res > 0.5 * limit ? fill + 2 : (fill > 0 ? fill - 1 : 0);
+      peak = std::max(peak, fill);
+    }
+    cone = std::max(cone, num("cone_true", k));
+    if (healthy && k > 0) {
+      step = std::max({step, std::abs(num("gimbal_pitch", k) - num("gimbal_pitch", k - 1)),
+                       std::abs(num("gimbal_yaw", k) - num("gimbal_yaw", k - 1))});
+    }
+  }
+  ASSERT_GT(peak, 0u);
+  ASSERT_TRUE(r.metrics->half_limit_persistence_ticks.has_value());
+  EXPECT_EQ(*r.metrics->half_limit_persistence_ticks, static_cast<double>(peak) / 2.0);
+  EXPECT_GT(cone, 0.01);
+  EXPECT_NEAR(r.metrics->max_cone_rad, cone, 1e-9 * cone);
+  ASSERT_TRUE(r.metrics->max_gimbal_step_rad.has_value());
+  EXPECT_GT(step, 0.0);
+  EXPECT_NEAR(*r.metrics->max_gimbal_step_rad, step, 1e-8 * step + 1e-15);
+}
+
 TEST(CampaignRun, GivenAnIntegerDispersionOfACountThenTheRunsRunWithThatCount) {
   // The scenario's counts take non-negative integers only: the draws must reach it as such.
   const Campaign c = parse(valid_campaign());

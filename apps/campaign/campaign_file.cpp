@@ -500,6 +500,8 @@ bool flag(const Fields& m, std::string_view key) {
 MetricSet parse_metrics(const Fields& m, double duration_s) {
   MetricSet out;
   out.healthy_residual = flag(m, "healthy_residual");
+  out.residual_persistence = flag(m, "residual_persistence");
+  out.envelope = flag(m, "envelope");
   out.safe_mode = flag(m, "safe_mode");
   out.slew_rate_error = parse_window(m, "slew_rate_error", duration_s);
   out.pointing_error = parse_window(m, "pointing_error", duration_s);
@@ -712,6 +714,11 @@ const std::vector<std::string>& component_flag_names() {
 std::vector<MetricColumn> metric_columns(const MetricSet& m) {
   std::vector<MetricColumn> out;
   if (m.healthy_residual) out.push_back({"max_residual_healthy_rad", ColumnType::kNumber});
+  if (m.residual_persistence) out.push_back({"half_limit_persistence_ticks", ColumnType::kNumber});
+  if (m.envelope) {
+    out.push_back({"max_cone_rad", ColumnType::kNumber});
+    out.push_back({"max_gimbal_step_rad", ColumnType::kNumber});
+  }
   if (m.safe_mode) {
     out.push_back({"safe_mode_s", ColumnType::kNumber});
     out.push_back({"detected", ColumnType::kBoolean});
@@ -775,8 +782,8 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   }
   if (top.has("metrics")) {
     const Fields m(c.file, top.get("metrics"), "metrics",
-                   {"healthy_residual", "safe_mode", "slew_rate_error", "pointing_error", "final_mode",
-                    "flag_counters", "gimbal_stop"});
+                   {"healthy_residual", "residual_persistence", "envelope", "safe_mode", "slew_rate_error",
+                    "pointing_error", "final_mode", "flag_counters", "gimbal_stop"});
     c.metrics = parse_metrics(m, duration_s);
   }
   if (top.has("criteria")) {

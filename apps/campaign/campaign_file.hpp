@@ -69,6 +69,8 @@ struct Window {
 
 struct MetricSet {
   bool healthy_residual{false};     // max_residual_healthy_rad
+  bool residual_persistence{false}; // half_limit_persistence_ticks
+  bool envelope{false};             // max_cone_rad, max_gimbal_step_rad
   bool safe_mode{false};            // safe_mode_s, detected, false_alarm, latency_s
   std::optional<Window> slew_rate_error;  // slew_rate_error_rad_s
   std::optional<Window> pointing_error;   // max_pointing_error_rad

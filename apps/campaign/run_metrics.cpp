@@ -8,7 +8,8 @@ namespace gyro::campaign {
 MetricsObserver::MetricsObserver(const sil::Scenario& s, const MetricSet& m)
     : tick_s_(s.run.tick_s),
       slew_window_(ticks_of(m.slew_rate_error, s.run.tick_s)),
-      pointing_window_(ticks_of(m.pointing_error, s.run.tick_s)) {
+      pointing_window_(ticks_of(m.pointing_error, s.run.tick_s)),
+      half_limit_rad_(0.5 * s.component.residual_limit_rad) {
   for (std::size_t i = 0; i < s.fault_count; ++i) {
     const std::uint64_t start = s.gyro.faults[i].start_tick;
     fault_tick_ = fault_tick_ ? std::min(*fault_tick_, start) : start;
@@ -24,7 +25,16 @@ std::optional<MetricsObserver::TickWindow> MetricsObserver::ticks_of(const std::
 void MetricsObserver::on_tick(const sil::TickRecord& r) {
   const bool free = r.mode == GyroMode::kFree;
   const bool healthy = !fault_tick_ || r.tick < *fault_tick_;
-  if (free && healthy) raise(m_.max_residual_healthy_rad, r.residual_rad.cwiseAbs().maxCoeff());
+  if (free && healthy) {
+    const double residual = r.residual_rad.cwiseAbs().maxCoeff();
+    raise(m_.max_residual_healthy_rad, residual);
+    // The cap (2 N) is out of reach: 2^31 ticks is longer than any run.
+    (void)half_limit_monitor_.update(residual > half_limit_rad_, 1u << 30);
+    raise(m_.half_limit_persistence_ticks, static_cast<double>(half_limit_monitor_.fill()) / 2.0);
+  }
+  m_.max_cone_rad = std::max(m_.max_cone_rad, r.cone_true_rad);
+  if (healthy && last_gimbal_rad_) raise(m_.max_gimbal_step_rad, (r.gimbal_true_rad - *last_gimbal_rad_).cwiseAbs().maxCoeff());
+  last_gimbal_rad_ = r.gimbal_true_rad;
   if (r.mode == GyroMode::kFault && !safe_tick_) safe_tick_ = r.tick;
   const auto within = [&](const std::optional<TickWindow>& w) { return w && r.tick >= w->from && r.tick <= w->to; };
   if (free && within(slew_window_)) {

@@ -3,6 +3,12 @@
 //   fault start      the earliest start tick of the scenario's faults (none: no fault)
 //   healthy residual the largest |residual| (either axis) over ticks in mode free before the
 //                    fault start
+//   residual persistence  over the same ticks, the largest count (in ticks) a persistence
+//                    monitor as the component's (gyro/persistence.hpp) reaches when fed
+//                    |residual| > half the residual limit: how long the residual of a healthy
+//                    gyro dwells near the limit, for choosing residual_persistence_ticks
+//   envelope         the largest true cone over the run, and the largest change of a true
+//                    gimbal angle in one tick before the fault start (for max_pickoff_step_rad)
 //   safe mode        the first tick in mode fault; detected = at or after the fault start;
 //                    false alarm = before it (or in a run without a fault); latency =
 //                    safe mode - fault start when detected
@@ -19,6 +25,7 @@
 #include <optional>
 
 #include "campaign_file.hpp"
+#include "gyro/persistence.hpp"
 #include "scenario.hpp"
 #include "sil_runner.hpp"
 
@@ -26,6 +33,9 @@ namespace gyro::campaign {
 
 struct RunMetrics {
   std::optional<double> max_residual_healthy_rad;
+  std::optional<double> half_limit_persistence_ticks;
+  double max_cone_rad{0};
+  std::optional<double> max_gimbal_step_rad;
   std::optional<double> safe_mode_s;
   std::optional<bool> detected;      // runs with a fault only
   bool false_alarm{false};
@@ -58,6 +68,9 @@ class MetricsObserver final : public sil::TickObserver {
   Eigen::Vector2d slew_error_sum_{Eigen::Vector2d::Zero()};
   std::uint64_t slew_ticks_{0};
   std::uint64_t stop_ticks_{0};
+  double half_limit_rad_;
+  PersistenceMonitor half_limit_monitor_{};
+  std::optional<Eigen::Vector2d> last_gimbal_rad_;
   RunMetrics m_;
 };
 

@@ -32,6 +32,11 @@ std::vector<std::string> metric_cells(const Campaign& c, const RunResult& r) {
   std::vector<std::string> out;
   const RunMetrics* m = r.metrics ? &*r.metrics : nullptr;
   if (ms.healthy_residual) out.push_back(m ? optional_cell(m->max_residual_healthy_rad) : "");
+  if (ms.residual_persistence) out.push_back(m ? optional_cell(m->half_limit_persistence_ticks) : "");
+  if (ms.envelope) {
+    out.push_back(m ? number_cell(m->max_cone_rad) : "");
+    out.push_back(m ? optional_cell(m->max_gimbal_step_rad) : "");
+  }
   if (ms.safe_mode) {
     out.push_back(m ? optional_cell(m->safe_mode_s) : "");
     out.push_back(m && m->detected ? bool_cell(*m->detected) : "");

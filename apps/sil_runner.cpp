@@ -73,8 +73,8 @@ void for_each_column(const TickRecord& r, F&& f) {
   f(Column{"spin_hz_true", Kind::kReal}, r.spin_hz_true);
   f(Column{"torque_applied_pitch", Kind::kReal}, r.torque_applied(0));
   f(Column{"torque_applied_yaw", Kind::kReal}, r.torque_applied(1));
-  f(Column{"body_pitch_rate", Kind::kReal}, r.body_rate_rad_s(0));
-  f(Column{"body_yaw_rate", Kind::kReal}, r.body_rate_rad_s(1));
+  f(Column{"body_pitch_rate", Kind::kReal}, r.body_rate_rad_s(1));
+  f(Column{"body_yaw_rate", Kind::kReal}, r.body_rate_rad_s(2));
   f(Column{"truth_flags", Kind::kTruthFlags}, u(r.truth_flags));
   f(Column{"active_faults", Kind::kFaultBits}, u(r.active_faults));
   f(Column{"step_status", Kind::kStatus}, static_cast<std::uint64_t>(r.step_status));
@@ -330,7 +330,15 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
   GuidancePlayer guidance(s.guidance);
   Progress progress(options, s.run.ticks);
 
-  const Status started = stub.start(body.R_earth_to_body().cast<T>(), v2<T>(body.rate_rad_s()));
+  // The body's truth at the current tick, in the run's scalar.
+  const auto sample = [&body] {
+    BodySample<T> b;
+    b.R_earth_to_body = body.R_earth_to_body().cast<T>();
+    b.rate_rad_s = body.rate_rad_s().cast<T>();
+    b.specific_force = body.specific_force().cast<T>();
+    return b;
+  };
+  const Status started = stub.start(sample());
   if (started != Status::kOk) throw RunError(std::string("SimulatedGyro::start refused: ") + to_string(started));
   const Status active = comp.activate();
   if (active != Status::kOk) throw RunError(std::string("GyroComponent::activate refused: ") + to_string(active));
@@ -340,7 +348,7 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
   for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
     if (k > 0) {
       body.advance();
-      const Status st = stub.advance(k, body.R_earth_to_body().cast<T>(), v2<T>(body.accel()));
+      const Status st = stub.advance(k, sample());
       if (st != Status::kOk) {
         throw RunError("tick " + std::to_string(k) + ": SimulatedGyro::advance refused: " + to_string(st));
       }
@@ -350,7 +358,7 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     in.slew_rate_cmd_rad_s = v2<T>(guidance.slew());
     in.nav_valid = guidance.nav_valid();
     in.R_earth_to_body = body.R_earth_to_body().cast<T>();
-    in.body_rate_rad_s = Vector3<T>(T(0), static_cast<T>(body.rate_rad_s()(0)), static_cast<T>(body.rate_rad_s()(1)));
+    in.body_rate_rad_s = body.rate_rad_s().cast<T>();
     const Status step = comp.step(k, in);
     if (step != Status::kOk && step != Status::kInputIgnored) ++sum.refused_steps;
 

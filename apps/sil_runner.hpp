@@ -50,7 +50,7 @@ struct TickRecord {
   double spin_hz{0};
   double spin_hz_true{0};
   Eigen::Vector2d torque_applied{Eigen::Vector2d::Zero()};
-  Eigen::Vector2d body_rate_rad_s{Eigen::Vector2d::Zero()};
+  Eigen::Vector3d body_rate_rad_s{Eigen::Vector3d::Zero()};     // (p, q, r)
   std::uint32_t truth_flags{0};  // bit 2 at the stop; bits 0-1 the report plant's gimbal-limit, small-angle flags
   bool at_gimbal_stop{false};
   std::uint32_t active_faults{0};               // the stub's, bit (1 << FaultKind)

@@ -101,8 +101,8 @@ TEST(CampaignFile, GivenEachMalformedCampaignThenItIsRefusedNamingFieldAndReason
        "cannot open the base scenario \"scenarios/none.json\""},
       {"base inline and wrong", [](json& j) {
          j["base"] = json::parse(slurp(kSource / "scenarios/seeker_slew.json"));
-         j["base"]["gyro"]["rotor"]["yaw_inertia"] = -2e-5;
-       }, "base.gyro.rotor.yaw_inertia", "refused by SimulatedGyro::configure"},
+         j["base"]["gyro"]["gimbal"]["rotor_transverse_inertia"] = -1.6e-5;
+       }, "base.gyro.gimbal.rotor_transverse_inertia", "refused by SimulatedGyro::configure"},
       {"base inline, unknown key", [](json& j) {
          j["base"] = json::parse(slurp(kSource / "scenarios/seeker_slew.json"));
          j["base"]["body"]["rate_rads"] = 1;
@@ -347,7 +347,7 @@ TEST(CampaignDraws, GivenADispersionRemovedOrAddedThenTheOtherFieldsDrawTheSameV
   json j = valid_campaign();
   const Campaign full = parse(j);
   j["dispersions"].erase(0);
-  j["dispersions"].push_back({{"path", "body.accel[0]"}, {"distribution", "uniform"}, {"min", -1}, {"max", 1}});
+  j["dispersions"].push_back({{"path", "body.specific_force[1]"}, {"distribution", "uniform"}, {"min", -1}, {"max", 1}});
   const Campaign changed = parse(j);
   for (std::uint64_t k = 0; k < full.runs; ++k) {
     const RunPlan a = plan_run(full, k), b = plan_run(changed, k);
@@ -395,7 +395,7 @@ std::vector<double> numbers(const std::vector<json>& v) {
 }
 
 TEST(CampaignDraws, GivenAUniformThenValuesFillTheIntervalWithItsMeanAndVariance) {
-  const Dispersion d = dispersion_of({{"path", "body.accel[0]"}, {"distribution", "uniform"}, {"min", -2}, {"max", 6}});
+  const Dispersion d = dispersion_of({{"path", "body.specific_force[1]"}, {"distribution", "uniform"}, {"min", -2}, {"max", 6}});
   const std::vector<double> v = numbers(many(d, 5.0, kDraws));
   EXPECT_GE(*std::min_element(v.begin(), v.end()), -2.0);
   EXPECT_LT(*std::max_element(v.begin(), v.end()), 6.0);
@@ -408,7 +408,7 @@ TEST(CampaignDraws, GivenAUniformThenValuesFillTheIntervalWithItsMeanAndVariance
 
 TEST(CampaignDraws, GivenANormalThenMeanAndSdMatch) {
   const Dispersion d =
-      dispersion_of({{"path", "body.accel[0]"}, {"distribution", "normal"}, {"mean", 3}, {"sd", 0.5}});
+      dispersion_of({{"path", "body.specific_force[1]"}, {"distribution", "normal"}, {"mean", 3}, {"sd", 0.5}});
   const std::vector<double> v = numbers(many(d, 0.0, kDraws));
   EXPECT_NEAR(mean_of(v), 3.0, kSigmas * 0.5 / std::sqrt(kDraws));
   double var = 0;
@@ -420,7 +420,7 @@ TEST(CampaignDraws, GivenANormalThenMeanAndSdMatch) {
 
 TEST(CampaignDraws, GivenATruncatedNormalThenValuesStayInTheWindowWithTheTruncatedMean) {
   // One-sided window [mean, mean + 2 sd]: the truncated mean is mean + sd (phi(0) - phi(2)) / (Phi(2) - Phi(0)).
-  const Dispersion d = dispersion_of({{"path", "body.accel[0]"}, {"distribution", "truncated_normal"},
+  const Dispersion d = dispersion_of({{"path", "body.specific_force[1]"}, {"distribution", "truncated_normal"},
                                       {"mean", 1}, {"sd", 2}, {"min", 1}, {"max", 5}});
   const std::vector<double> v = numbers(many(d, 0.0, kDraws));
   EXPECT_GE(*std::min_element(v.begin(), v.end()), 1.0);
@@ -456,10 +456,10 @@ TEST(CampaignDraws, GivenAWeightedChoiceThenFrequenciesFollowTheWeights) {
 
 TEST(CampaignDraws, GivenScaleAndOffsetThenTheBaseValueIsScaledOrShifted) {
   const Dispersion s =
-      dispersion_of({{"path", "body.accel[0]"}, {"distribution", "choice"}, {"values", {2}}, {"apply", "scale"}});
+      dispersion_of({{"path", "body.specific_force[1]"}, {"distribution", "choice"}, {"values", {2}}, {"apply", "scale"}});
   EXPECT_EQ(draw(s, 1.5, 1).get<double>(), 3.0);
   const Dispersion o =
-      dispersion_of({{"path", "body.accel[0]"}, {"distribution", "choice"}, {"values", {2}}, {"apply", "offset"}});
+      dispersion_of({{"path", "body.specific_force[1]"}, {"distribution", "choice"}, {"values", {2}}, {"apply", "offset"}});
   EXPECT_EQ(draw(o, 1.5, 1).get<double>(), 3.5);
 }
 

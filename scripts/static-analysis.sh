@@ -26,10 +26,13 @@ fi
 
 failed=0
 
-# 1. Every header of the three libraries is in the analysed translation unit.
+# 1. Every header of the libraries (subfolders included: gyro/link/...) is in the analysed
+# translation unit.
+mapfile -t lib_headers < <(find component/include/gyro port/include/gyro hil_stub/include/gyro \
+  -name '*.hpp' | sort)
 echo "== headers in $tu"
-for h in component/include/gyro/*.hpp port/include/gyro/*.hpp hil_stub/include/gyro/*.hpp; do
-  name="gyro/$(basename "$h")"
+for h in "${lib_headers[@]}"; do
+  name="${h#*/include/}"
   if ! grep -q "^#include \"${name}\"" "$tu"; then
     echo "$tu: does not include \"$name\": the header would escape the analysis"
     failed=1
@@ -40,7 +43,6 @@ done
 # for in the code with // comments removed. The compiler flags and the tests enforce most of
 # these too; this names the rule and the line.
 echo "== banned constructs in component/, port/, hil_stub/"
-lib_headers=(component/include/gyro/*.hpp port/include/gyro/*.hpp hil_stub/include/gyro/*.hpp)
 ban() {  # ban <rule> <extended regex> [<regex of allowed matches>]
   local rule="$1" re="$2" allow="${3:-}" h hits
   for h in "${lib_headers[@]}"; do

@@ -66,6 +66,7 @@ template class SimulatedGyro<double>;  // NOLINT(cppcoreguidelines-virtual-class
 #include "gyro/link/gyro_link_messages.hpp"
 #include "gyro/link/link_gyro_port.hpp"
 #include "gyro/link/wire.hpp"
+#include "gyro/rate_group.hpp"
 
 namespace gyro {
 template class link::ByteFifo<64>;

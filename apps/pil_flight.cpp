@@ -1,0 +1,332 @@
+#include "pil_flight.hpp"
+
+#include <sys/stat.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "gyro/link/gyro_link_messages.hpp"
+#include "gyro/pil/harness.hpp"
+#include "pil_connection.hpp"
+#include "sil_runner.hpp"
+
+namespace gyro::sil {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr std::array<std::string_view, 12> kPilColumns = {
+    "pil_ran",      "pil_step_clocks", "pil_step_instructions", "pil_overruns",    "pil_skipped",    "pil_readings",
+    "pil_timeouts", "pil_bus_errors",  "pil_duplicates",        "pil_frames_lost", "pil_crc_errors", "pil_wire_faults"};
+
+constexpr std::size_t kNoiseBytes = 16;
+
+std::uint64_t splitmix64(std::uint64_t x) noexcept {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30u)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27u)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31u);
+}
+
+bool has(std::uint32_t faults, WireFaultKind k) noexcept { return (faults & (1u << static_cast<unsigned>(k))) != 0u; }
+
+std::uint32_t low32(std::uint64_t v) noexcept { return static_cast<std::uint32_t>(v & 0xFFFFFFFFu); }
+
+// Refuses to let QEMU replace anything at the socket path but a stale socket.
+void check_socket_path(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0 && !S_ISSOCK(st.st_mode)) {
+    throw RunError("PIL socket path " + path + " exists and is not a socket: not replacing it");
+  }
+}
+
+template <typename T>
+class PilFlightComputer final : public FlightComputer<T> {
+ public:
+  PilFlightComputer(SimulatedGyro<T>& stub, const PilOptions& options, PilSummary& summary)
+      : stub_(stub), options_(options), summary_(summary) {
+    if (!options.firmware.empty()) {
+      check_socket_path(options.socket);
+      qemu_.emplace(qemu_command(options.qemu, options.machine, options.firmware, options.socket),
+                    options.target_console);
+    }
+    socket_.emplace(options.socket, 10.0, [this] { return !qemu_ || qemu_->running(); });
+  }
+
+  ~PilFlightComputer() override {
+    if (qemu_ && !stopped_) {
+      try {
+        send(pil::encode_stop<T>(1, harness_seq_++));
+      } catch (const RunError&) {  // the line is gone: QemuProcess terminates QEMU
+      }
+    }
+  }
+
+  [[nodiscard]] ConfigCheck configure(const GyroComponentConfig<T>& config) override {
+    pil::Hello hello;
+    if (!pil::decode_hello<T>(receive(), hello)) {
+      throw RunError("PIL link: the target did not say hello in " + std::string(sizeof(T) == 4 ? "float" : "double") +
+                     " (a target in the other precision answers in its own: check --precision)");
+    }
+    if (hello.version != pil::kProtocolVersion || hello.real_bytes != sizeof(T)) {
+      throw RunError("PIL link: target protocol " + std::to_string(hello.version) + " with " +
+                     std::to_string(hello.real_bytes) + "-byte reals; expected protocol " +
+                     std::to_string(pil::kProtocolVersion) + " with " + std::to_string(sizeof(T)));
+    }
+    summary_.target_real_bytes = hello.real_bytes;
+    summary_.timer_hz = hello.timer_hz;
+    pil::Config<T> c;
+    c.component = config;
+    const double period = std::round(static_cast<double>(config.tick_s) * static_cast<double>(hello.timer_hz));
+    c.timer_period = options_.tick_clocks.value_or(period >= 1.0 && period <= 4e9 ? static_cast<std::uint32_t>(period) : 0u);
+    summary_.tick_clocks = c.timer_period;
+    send(pil::encode_config(c, harness_seq_++));
+    pil::ConfigAck ack;
+    if (!pil::decode_config_ack<T>(receive(), ack)) throw RunError("PIL link: no configuration verdict from the target");
+    refused_field_ = ack.field.data();
+    return ConfigCheck{ack.status, ack.status == Status::kOk ? nullptr : refused_field_.c_str()};
+  }
+
+  // The target activates itself once configured; its first report names its first tick.
+  [[nodiscard]] Status activate() override {
+    const pil::TickOut first = receive_report();
+    if (first.has_previous) throw RunError("PIL link: the target reported a cycle before its first");
+    next_tick_ = first.next_tick;
+    start_ = Clock::now();
+    return Status::kOk;
+  }
+
+  [[nodiscard]] std::optional<Status> step(std::uint64_t tick, const GuidanceInput<T>& in) override {
+    if (in.request != ModeRequest::kNone) pending_request_ = in.request;  // held over skipped ticks
+    faults_ = active_wire_faults(options_.faults, tick);
+    ran_ = false;
+    if (tick < next_tick_) return std::nullopt;  // the target skipped it after an overrun
+    if (tick != next_tick_) {
+      throw RunError("PIL link: the target runs tick " + std::to_string(next_tick_) + ", the host is at " +
+                     std::to_string(tick));
+    }
+    send_tick(tick, in);
+    const pil::TickOut report = receive_report();
+    if (!report.has_previous || report.previous_tick != low32(tick)) {
+      throw RunError("PIL link: the report is not of tick " + std::to_string(tick));
+    }
+    take_torque(report.gyro_bytes);
+    if (!pil::decode_telemetry(receive(), telemetry_)) throw RunError("PIL link: no telemetry for tick " + std::to_string(tick));
+    telemetry_.tick = tick;
+    next_tick_ = tick + static_cast<std::uint32_t>(report.next_tick - low32(tick));
+
+    ran_ = true;
+    step_clocks_ = report.step_counts;
+    summary_.cycles += 1;
+    summary_.step_clocks_total += report.step_counts;
+    if (report.step_counts > summary_.step_clocks_worst) {
+      summary_.step_clocks_worst = report.step_counts;
+      summary_.worst_tick = tick;
+    }
+    summary_.skipped = report.skipped;
+    summary_.overruns = report.overruns;
+    summary_.last_report = report;
+    return report.step_status;
+  }
+
+  [[nodiscard]] const GyroTelemetry<T>& telemetry() const override { return telemetry_; }
+  [[nodiscard]] GyroMode mode() const override { return telemetry_.mode; }
+
+  [[nodiscard]] std::span<const std::string_view> extra_columns() const override { return kPilColumns; }
+  void write_extras(CsvWriter& csv) const override {
+    const pil::TickOut& r = summary_.last_report;
+    csv.integer(ran_ ? 1u : 0u);
+    csv.integer(ran_ ? step_clocks_ : 0u);
+    csv.integer(ran_ ? static_cast<std::uint64_t>(std::llround(static_cast<double>(step_clocks_) * summary_.instructions_per_clock())) : 0u);
+    csv.integer(r.overruns).integer(r.skipped).integer(r.port.readings).integer(r.port.timeouts);
+    csv.integer(r.port.bus_errors).integer(r.port.duplicates).integer(r.port.frames_lost).integer(r.crc_errors);
+    csv.integer(faults_);
+  }
+
+  void finish() override {
+    summary_.exchange_wall_s = std::chrono::duration<double>(Clock::now() - start_).count();
+    send(pil::encode_stop<T>(0, harness_seq_++));
+    stopped_ = true;
+    if (qemu_) {
+      summary_.qemu_exit = qemu_->wait(10.0);
+      if (summary_.qemu_exit != 0) {
+        throw RunError("QEMU ended with status " + std::to_string(summary_.qemu_exit) + " after the run");
+      }
+    }
+  }
+
+ private:
+  void send(const pil::HarnessFrame<T>& f) {
+    std::array<std::uint8_t, pil::kHarnessFrameBytes<T>> bytes{};
+    const std::size_t n = link::encode_frame(f, bytes);
+    socket_->write(std::span<const std::uint8_t>(bytes.data(), n));
+  }
+
+  [[nodiscard]] pil::HarnessFrame<T> receive() {
+    const std::uint32_t faults = decoder_.counters().faults();
+    pil::HarnessFrame<T> f;
+    for (;;) {
+      (void)decoder_.push(socket_->read_byte(options_.timeout_s));
+      if (decoder_.next(f)) return f;
+      if (decoder_.counters().faults() != faults) throw RunError("PIL link: garbled harness frame from the target");
+    }
+  }
+
+  [[nodiscard]] pil::TickOut receive_report() {
+    pil::TickOut t;
+    if (!pil::decode_tick_out<T>(receive(), t)) throw RunError("PIL link: expected the target's tick report");
+    return t;
+  }
+
+  // The electronics' side of tick k: the stub's conversion as a pickoff frame, through the
+  // wire faults, inside the tick's record with the guidance input.
+  void send_tick(std::uint64_t tick, const GuidanceInput<T>& in) {
+    std::vector<std::uint8_t> wire;
+    PickoffReading<T> reading;
+    if (stub_.read_pickoffs(reading) == PortStatus::kOk) {
+      std::array<std::uint8_t, link::kGyroLinkFrameBytes<T>> frame{};
+      const std::size_t n = link::encode_frame(link::encode_pickoff(reading, downlink_seq_++), frame);
+      wire = faulted_downlink(std::span<const std::uint8_t>(frame.data(), n), faults_, tick);
+    }
+    if (wire.size() > 255u) throw RunError("PIL link: more than 255 gyro-link bytes in one tick");
+    pil::TickIn<T> t;
+    t.tick = low32(tick);
+    t.gyro_bytes = static_cast<std::uint8_t>(wire.size());
+    t.guidance = in;
+    t.guidance.request = pending_request_;
+    pending_request_ = ModeRequest::kNone;
+    std::array<std::uint8_t, pil::kHarnessFrameBytes<T>> bytes{};
+    const std::size_t n = link::encode_frame(pil::encode_tick_in(t, harness_seq_++), bytes);
+    wire.insert(wire.begin(), bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
+    socket_->write(wire);
+  }
+
+  // The target's torque frames of the cycle: the newest good one is latched by the stub
+  // (nothing arrives while the link is stalled: the stub holds the previous command).
+  void take_torque(std::uint8_t count) {
+    bool fresh = false;
+    Vector2<T> torque = Vector2<T>::Zero();
+    for (std::uint8_t i = 0; i < count; ++i) {
+      const std::uint8_t b = socket_->read_byte(options_.timeout_s);
+      if (has(faults_, WireFaultKind::kStall)) continue;
+      (void)uplink_.push(b);
+      for (link::GyroLinkFrame<T> f; uplink_.next(f);) fresh = link::decode_torque(f, torque) || fresh;
+    }
+    summary_.uplink = uplink_.counters();
+    if (fresh && stub_.write_torquer(torque) == PortStatus::kOk) ++summary_.torque_commands;
+  }
+
+  SimulatedGyro<T>& stub_;
+  PilOptions options_;
+  PilSummary& summary_;
+  std::optional<QemuProcess> qemu_;
+  std::optional<SerialSocket> socket_;
+  pil::HarnessDecoder<T> decoder_{};
+  link::FrameDecoder<link::GyroLinkMessages<T>> uplink_{};
+  GyroTelemetry<T> telemetry_{};
+  std::string refused_field_;
+  std::uint64_t next_tick_{0};
+  ModeRequest pending_request_{ModeRequest::kNone};
+  std::uint32_t faults_{0};
+  bool ran_{false};
+  std::uint64_t step_clocks_{0};
+  std::uint8_t harness_seq_{0};
+  std::uint8_t downlink_seq_{0};
+  bool stopped_{false};
+  Clock::time_point start_{Clock::now()};
+};
+
+}  // namespace
+
+const char* wire_fault_name(WireFaultKind k) noexcept {
+  switch (k) {
+    case WireFaultKind::kCorruptCrc: return "crc";
+    case WireFaultKind::kDrop: return "drop";
+    case WireFaultKind::kDuplicate: return "duplicate";
+    case WireFaultKind::kStall: return "stall";
+    case WireFaultKind::kNoise: return "noise";
+  }
+  return "unknown";
+}
+
+std::optional<WireFault> parse_wire_fault(std::string_view text, std::string& error) {
+  const std::size_t at = text.find('@');
+  if (at == std::string_view::npos) {
+    error = "expected KIND@TICK[+TICKS], e.g. crc@600+5";
+    return std::nullopt;
+  }
+  const std::string_view name = text.substr(0, at);
+  std::optional<WireFaultKind> kind;
+  for (int i = 0; i < kWireFaultKindCount; ++i) {
+    if (name == wire_fault_name(static_cast<WireFaultKind>(i))) kind = static_cast<WireFaultKind>(i);
+  }
+  if (!kind) {
+    error = "unknown wire fault '" + std::string(name) + "' (crc, drop, duplicate, stall, noise)";
+    return std::nullopt;
+  }
+  const auto number = [](std::string_view s, std::uint64_t& out) {
+    if (s.empty() || s.size() > 18) return false;
+    out = 0;
+    for (char c : s) {
+      if (c < '0' || c > '9') return false;
+      out = out * 10u + static_cast<std::uint64_t>(c - '0');
+    }
+    return true;
+  };
+  const std::string_view rest = text.substr(at + 1);
+  const std::size_t plus = rest.find('+');
+  WireFault f;
+  f.kind = *kind;
+  if (!number(rest.substr(0, plus), f.start_tick) ||
+      (plus != std::string_view::npos && (!number(rest.substr(plus + 1), f.ticks) || f.ticks == 0u))) {
+    error = "bad tick or tick count in '" + std::string(text) + "' (KIND@TICK[+TICKS], TICKS >= 1)";
+    return std::nullopt;
+  }
+  return f;
+}
+
+std::uint32_t active_wire_faults(const std::vector<WireFault>& faults, std::uint64_t tick) noexcept {
+  std::uint32_t bits = 0;
+  for (const WireFault& f : faults) {
+    if (tick >= f.start_tick && tick - f.start_tick < f.ticks) bits |= 1u << static_cast<unsigned>(f.kind);
+  }
+  return bits;
+}
+
+std::vector<std::uint8_t> faulted_downlink(std::span<const std::uint8_t> frame, std::uint32_t faults,
+                                           std::uint64_t tick) {
+  std::vector<std::uint8_t> out;
+  if (has(faults, WireFaultKind::kStall) || has(faults, WireFaultKind::kDrop)) return out;
+  if (has(faults, WireFaultKind::kNoise)) {
+    std::uint64_t r = splitmix64(tick);
+    for (std::size_t i = 0; i < kNoiseBytes; ++i) {
+      if (i % 8u == 0u && i != 0u) r = splitmix64(r);
+      out.push_back(static_cast<std::uint8_t>((r >> (8u * (i % 8u))) & 0xFFu));
+    }
+  }
+  const std::size_t start = out.size();
+  out.insert(out.end(), frame.begin(), frame.end());
+  if (has(faults, WireFaultKind::kCorruptCrc) && frame.size() > link::kFrameOverhead) {
+    out[start + link::kHeaderBytes] ^= 0x01u;  // the first payload byte: the CRC no longer matches
+  }
+  if (has(faults, WireFaultKind::kDuplicate)) {
+    const std::vector<std::uint8_t> copy(out.begin() + static_cast<std::ptrdiff_t>(start), out.end());
+    out.insert(out.end(), copy.begin(), copy.end());
+  }
+  return out;
+}
+
+std::unique_ptr<FlightComputer<float>> make_pil_flight(SimulatedGyro<float>& stub, const PilOptions& options,
+                                                       PilSummary& summary) {
+  return std::make_unique<PilFlightComputer<float>>(stub, options, summary);
+}
+std::unique_ptr<FlightComputer<double>> make_pil_flight(SimulatedGyro<double>& stub, const PilOptions& options,
+                                                        PilSummary& summary) {
+  return std::make_unique<PilFlightComputer<double>>(stub, options, summary);
+}
+
+}  // namespace gyro::sil

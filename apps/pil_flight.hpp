@@ -1,0 +1,37 @@
+// Processor in the loop (docs/pil.md): the flight component runs on an emulated Cortex-M
+// (firmware/pil/, the gyro_fw_pil image under QEMU) and the SIL loop's stub, body and guidance
+// stay on the host. The FlightComputer made here plays the gyro electronics on the serial
+// line: each tick it sends the stub's pickoff conversion as a pickoff frame (through the wire
+// faults asked for) with the tick's guidance input, and applies the torque frame the target
+// answers with to the stub. Lockstep: the target runs a tick only with the host's inputs for
+// it, in its own time, which stands still while the host works.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "flight_computer.hpp"
+#include "pil_options.hpp"
+
+namespace gyro::sil {
+
+// The flight computer on the target; `summary` is filled in as the run goes. Starts QEMU when
+// options.firmware is set, else connects to the one listening on options.socket.
+[[nodiscard]] std::unique_ptr<FlightComputer<float>> make_pil_flight(SimulatedGyro<float>& stub,
+                                                                     const PilOptions& options,
+                                                                     PilSummary& summary);
+[[nodiscard]] std::unique_ptr<FlightComputer<double>> make_pil_flight(SimulatedGyro<double>& stub,
+                                                                      const PilOptions& options,
+                                                                      PilSummary& summary);
+
+// The wire faults active at `tick`: bit (1 << kind) for each.
+[[nodiscard]] std::uint32_t active_wire_faults(const std::vector<WireFault>& faults, std::uint64_t tick) noexcept;
+
+// What the electronics' encoded frame becomes on the wire at `tick` under the active faults
+// (stall > drop > the others; noise first, then the frame, corrupted or twice).
+[[nodiscard]] std::vector<std::uint8_t> faulted_downlink(std::span<const std::uint8_t> frame, std::uint32_t faults,
+                                                         std::uint64_t tick);
+
+}  // namespace gyro::sil

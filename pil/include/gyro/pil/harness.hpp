@@ -209,6 +209,16 @@ template <typename T, std::size_t N>
   return f;
 }
 
+// Enumerations and booleans arrive as bytes: only the values they can take are accepted, so
+// every frame a decoder accepts encodes back to the same bytes.
+[[nodiscard]] constexpr bool known_status(std::uint8_t v) noexcept {
+  return v <= static_cast<std::uint8_t>(Status::kWrongMode);
+}
+[[nodiscard]] constexpr bool known_mode(std::uint8_t v) noexcept {
+  return v <= static_cast<std::uint8_t>(GyroMode::kFault);
+}
+[[nodiscard]] constexpr bool boolean(std::uint8_t v) noexcept { return v <= 1u; }
+
 // A decoder's last check: every byte of the payload read, none past it.
 template <std::size_t N>
 [[nodiscard]] bool consumed(const link::WireReader<N>& r, std::uint8_t length) noexcept {
@@ -289,10 +299,10 @@ template <typename T>
   if (!detail::is<T>(f, kConfigAck)) return false;
   link::WireReader r(f.payload, 0);
   ConfigAck a;
-  a.status = static_cast<Status>(r.u8());
+  const std::uint8_t status = r.u8();
   std::generate(a.field.begin(), a.field.end(), [&r] { return static_cast<char>(r.u8()); });
-  a.field.back() = '\0';
-  if (!detail::consumed(r, f.length)) return false;
+  if (!detail::consumed(r, f.length) || !detail::known_status(status) || a.field.back() != '\0') return false;
+  a.status = static_cast<Status>(status);
   out = a;
   return true;
 }
@@ -380,22 +390,28 @@ template <typename T>
   link::WireReader r(f.payload, 0);
   TickOut t;
   t.next_tick = r.u32();
-  t.has_previous = r.u8() != 0u;
+  const std::uint8_t has_previous = r.u8();
+  t.has_previous = has_previous != 0u;
   t.previous_tick = r.u32();
-  t.step_status = static_cast<Status>(r.u8());
+  const std::uint8_t step_status = r.u8();
+  t.step_status = static_cast<Status>(step_status);
   t.step_counts = r.u32();
   t.gyro_bytes = r.u8();
   t.released = r.u32();
   t.cycles = r.u32();
   t.skipped = r.u32();
   t.overruns = r.u32();
-  t.overrun = r.u8() != 0u;
+  const std::uint8_t overrun = r.u8();
+  t.overrun = overrun != 0u;
   for (std::uint32_t LinkPortCounters::*m : kPortCounters) t.port.*m = r.u32();
   t.header_errors = r.u32();
   t.crc_errors = r.u32();
   t.bytes_skipped = r.u32();
   t.decoder_frames = r.u32();
-  if (!detail::consumed(r, f.length)) return false;
+  if (!detail::consumed(r, f.length) || !detail::boolean(has_previous) || !detail::known_status(step_status) ||
+      !detail::boolean(overrun)) {
+    return false;
+  }
   out = t;
   return true;
 }
@@ -426,7 +442,8 @@ template <typename T>
   link::WireReader r(f.payload, 0);
   GyroTelemetry<T> m;
   m.tick = r.u32();
-  m.mode = static_cast<GyroMode>(r.u8());
+  const std::uint8_t mode = r.u8();
+  m.mode = static_cast<GyroMode>(mode);
   m.flags = r.u32();
   std::generate(m.counters.begin(), m.counters.end(), [&r] { return r.u32(); });
   for (Vector2<T> GyroTelemetry<T>::*p : TelemetryFields<T>::kPairs) {
@@ -436,7 +453,7 @@ template <typename T>
   const T qw = r.template real<T>(), qx = r.template real<T>(), qy = r.template real<T>(), qz = r.template real<T>();
   m.attitude_gyro_to_earth = Quaternion<T>(qw, qx, qy, qz);
   m.spin_hz = r.template real<T>();
-  if (!detail::consumed(r, f.length)) return false;
+  if (!detail::consumed(r, f.length) || !detail::known_mode(mode)) return false;
   out = m;
   return true;
 }

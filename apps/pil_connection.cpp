@@ -91,6 +91,22 @@ std::uint8_t SerialSocket::read_byte(double timeout_s) {
   return buf_[begin_++];
 }
 
+bool SerialSocket::wait_closed(double timeout_s) {
+  begin_ = end_ = 0;
+  const Clock::time_point t0 = Clock::now();
+  for (;;) {
+    const double left = timeout_s - seconds_since(t0);
+    if (left <= 0) return false;
+    pollfd p{fd_, POLLIN, 0};
+    const int r = ::poll(&p, 1, static_cast<int>(left * 1000.0) + 1);
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) return false;
+    if (r == 0) continue;
+    const ssize_t n = ::recv(fd_, buf_.data(), buf_.size(), 0);
+    if (n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN)) return true;
+  }
+}
+
 QemuProcess::QemuProcess(const std::vector<std::string>& argv, bool console) {
   std::vector<char*> args;
   args.reserve(argv.size() + 1);

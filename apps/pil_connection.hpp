@@ -26,6 +26,9 @@ class SerialSocket {
   void write(std::span<const std::uint8_t> bytes);
   // The next byte; throws after `timeout_s` of silence or when the target closed the line.
   [[nodiscard]] std::uint8_t read_byte(double timeout_s);
+  // Waits until the other end closes the line (bytes still arriving are dropped); false after
+  // `timeout_s`.
+  [[nodiscard]] bool wait_closed(double timeout_s);
 
  private:
   int fd_{-1};

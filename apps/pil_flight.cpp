@@ -1,6 +1,7 @@
 #include "pil_flight.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
@@ -44,6 +45,12 @@ void check_socket_path(const std::string& path) {
   }
 }
 
+// Removes the socket QEMU left behind (a socket only: nothing else is touched).
+void remove_socket(const std::string& path) noexcept {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0 && S_ISSOCK(st.st_mode)) ::unlink(path.c_str());
+}
+
 template <typename T>
 class PilFlightComputer final : public FlightComputer<T> {
  public:
@@ -64,14 +71,21 @@ class PilFlightComputer final : public FlightComputer<T> {
       } catch (const RunError&) {  // the line is gone: QemuProcess terminates QEMU
       }
     }
+    if (qemu_) {
+      socket_.reset();
+      qemu_.reset();  // terminates QEMU if it still runs
+      remove_socket(options_.socket);
+    }
   }
 
   [[nodiscard]] ConfigCheck configure(const GyroComponentConfig<T>& config) override {
+    // A target in the other precision says hello in frames this decoder refuses.
+    const char* const run = sizeof(T) == 4 ? "float" : "double";
+    const char* const other = sizeof(T) == 4 ? "double" : "float";
+    const std::string mismatch = std::string("PIL link: the target's hello is not in ") + run + ": a " + other +
+                                 " image? (run it with --precision " + other + ")";
     pil::Hello hello;
-    if (!pil::decode_hello<T>(receive(), hello)) {
-      throw RunError("PIL link: the target did not say hello in " + std::string(sizeof(T) == 4 ? "float" : "double") +
-                     " (a target in the other precision answers in its own: check --precision)");
-    }
+    if (!pil::decode_hello<T>(receive(mismatch.c_str()), hello)) throw RunError(mismatch);
     if (hello.version != pil::kProtocolVersion || hello.real_bytes != sizeof(T)) {
       throw RunError("PIL link: target protocol " + std::to_string(hello.version) + " with " +
                      std::to_string(hello.real_bytes) + "-byte reals; expected protocol " +
@@ -151,6 +165,9 @@ class PilFlightComputer final : public FlightComputer<T> {
     summary_.exchange_wall_s = std::chrono::duration<double>(Clock::now() - start_).count();
     send(pil::encode_stop<T>(0, harness_seq_++));
     stopped_ = true;
+    // The target exits on the stop and QEMU closes the line: closing ours first could make QEMU
+    // drop the stop's last bytes and leave the target waiting.
+    if (!socket_->wait_closed(10.0)) throw RunError("PIL link: the target did not end after the stop");
     if (qemu_) {
       summary_.qemu_exit = qemu_->wait(10.0);
       if (summary_.qemu_exit != 0) {
@@ -166,13 +183,13 @@ class PilFlightComputer final : public FlightComputer<T> {
     socket_->write(std::span<const std::uint8_t>(bytes.data(), n));
   }
 
-  [[nodiscard]] pil::HarnessFrame<T> receive() {
+  [[nodiscard]] pil::HarnessFrame<T> receive(const char* garbled = "PIL link: garbled harness frame from the target") {
     const std::uint32_t faults = decoder_.counters().faults();
     pil::HarnessFrame<T> f;
     for (;;) {
       (void)decoder_.push(socket_->read_byte(options_.timeout_s));
       if (decoder_.next(f)) return f;
-      if (decoder_.counters().faults() != faults) throw RunError("PIL link: garbled harness frame from the target");
+      if (decoder_.counters().faults() != faults) throw RunError(garbled);
     }
   }
 

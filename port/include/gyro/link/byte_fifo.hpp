@@ -21,7 +21,8 @@ class ByteFifo {
   // Appends a byte; false (nothing stored) when full.
   [[nodiscard]] bool push(std::uint8_t byte) noexcept {
     if (count_ == N) return false;
-    bytes_[(head_ + count_) % N] = byte;
+    const std::size_t at = head_ + count_;
+    bytes_[at < N ? at : at - N] = byte;
     ++count_;
     return true;
   }
@@ -29,7 +30,7 @@ class ByteFifo {
   [[nodiscard]] bool pop(std::uint8_t& out) noexcept {
     if (count_ == 0) return false;
     out = bytes_[head_];
-    head_ = (head_ + 1) % N;
+    head_ = head_ + 1 == N ? 0 : head_ + 1;
     --count_;
     return true;
   }

@@ -8,7 +8,8 @@
 //   static constexpr std::size_t kMaxPayload;                      // largest payload
 //   static constexpr int payload_length(std::uint8_t type) noexcept;  // -1: not accepted
 //
-// Use: push() one byte, then call next() until it returns false. Bounded work: next() drops
+// Use: push() bytes while room() allows, then call next() until it returns false (or one byte
+// at a time, each followed by next()). Bounded work: next() drops
 // at least one byte per failed candidate and checks each candidate's CRC once (at most
 // kMaxPayload + 7 bytes), so every byte costs at most one CRC of a full frame. No heap.
 // Sequence numbers are reported, not judged: duplicates and gaps are the receiver's call.
@@ -60,6 +61,7 @@ class FrameDecoder {
   // The next complete frame that passes every check; false when the bytes held do not (yet)
   // contain one.
   [[nodiscard]] bool next(FrameType& out) noexcept {
+    if (end_ - begin_ < need_) return false;  // the candidate's header is checked: wait for the rest
     // Each pass either returns or drops at least one byte: kCapacity + 1 passes suffice.
     for (std::size_t pass = 0; pass <= kCapacity; ++pass) {
       const std::size_t held = end_ - begin_;
@@ -83,7 +85,10 @@ class FrameDecoder {
         continue;
       }
       const std::size_t total = kFrameOverhead + length;
-      if (held < total) return false;
+      if (held < total) {
+        need_ = total;
+        return false;
+      }
       const std::uint16_t crc = crc16(window_, begin_ + 2, 3u + length);
       const std::size_t crc_at = begin_ + kHeaderBytes + length;
       const auto stored = static_cast<std::uint16_t>(window_[crc_at] | (window_[crc_at + 1] << 8u));
@@ -97,6 +102,7 @@ class FrameDecoder {
       out.length = length;
       for (std::size_t i = 0; i < length; ++i) out.payload[i] = window_[begin_ + kHeaderBytes + i];
       begin_ += total;
+      need_ = 0;
       bump(counters_.frames);
       return true;
     }
@@ -107,6 +113,8 @@ class FrameDecoder {
   void reset() noexcept { skip(end_ - begin_); }
 
   [[nodiscard]] std::size_t buffered() const noexcept { return end_ - begin_; }
+  // Bytes push() takes before next() must run (a whole largest frame fits in the window).
+  [[nodiscard]] std::size_t room() const noexcept { return kCapacity - (end_ - begin_); }
   [[nodiscard]] const DecoderCounters& counters() const noexcept { return counters_; }
 
  private:
@@ -115,6 +123,7 @@ class FrameDecoder {
   }
   void skip(std::size_t n) noexcept {
     begin_ += n;
+    need_ = 0;
     for (std::size_t i = 0; i < n; ++i) bump(counters_.bytes_skipped);
     if (begin_ == end_) begin_ = end_ = 0;
   }
@@ -129,6 +138,7 @@ class FrameDecoder {
   std::array<std::uint8_t, kCapacity> window_{};
   std::size_t begin_{0};
   std::size_t end_{0};
+  std::size_t need_{0};  // bytes the candidate at begin_ needs (0: its header is not checked yet)
   DecoderCounters counters_{};
 };
 

@@ -52,10 +52,16 @@ class LinkGyroPort final : public GyroPort<T> {
   [[nodiscard]] PortStatus read_pickoffs(PickoffReading<T>& out) noexcept override {
     const std::uint32_t faults_before = decoder_.counters().faults() + counters_.malformed;
     Read read;
+    // Bytes in batches of what the decoder's window takes, each batch drained of its frames.
     std::uint8_t byte = 0;
-    for (std::size_t i = 0; i < kMaxBytesPerRead && link_.read_byte(byte); ++i) {
-      (void)decoder_.push(byte);  // never full: next() is drained after every byte
+    std::size_t taken = 0;
+    for (std::size_t batch = 0; batch <= kMaxBytesPerRead && taken < kMaxBytesPerRead; ++batch) {
+      const std::size_t room = decoder_.room();
+      std::size_t n = 0;
+      for (; n < room && taken + n < kMaxBytesPerRead && link_.read_byte(byte); ++n) (void)decoder_.push(byte);
+      taken += n;
       for (std::size_t f = 0; f <= Decoder::kCapacity && decoder_.next(frame_); ++f) take(frame_, read);
+      if (n < room) break;  // the link has nothing more (or the read's budget is spent)
     }
     if (read.fresh) {
       bump(counters_.readings);

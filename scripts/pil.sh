@@ -5,7 +5,8 @@
 #      host SIL run of the same scenario in float within the tolerances below
 #   2. seeker slew on the Cortex-M7 (double), 300 ticks: matches the double SIL run
 #   3. overrun: the M4F with a timer period of half a step: the overrun counter rises, ticks
-#      are skipped, and the component keeps flying (free, no fault, on the SIL trajectory)
+#      are skipped, and the component keeps flying (free, no fault, on the SIL trajectory);
+#      run twice: the CSVs, timing columns included, are identical (-icount is deterministic)
 #   4. wire faults on the gyro link (crc, drop, duplicate, noise, stall): readings refused and
 #      counted exactly in the faulted ticks, duplicates and noise harmless, safe mode when the
 #      stall persists
@@ -141,8 +142,17 @@ if pil_run overrun_m4f cortex-m4f mps2-an386 float 1000 --pil-tick-clocks "$peri
     END {
       printf "  timer %d clocks per tick: %d overruns, %d of %d ticks skipped, %d ticks flagged tick_skipped;\n", period, overruns, skipped, ticks + 1, gaps
       printf "  final mode %s, %d ticks in safe mode; gimbal within %.3g rad of the host run\n", last_mode, faults, w
-      exit !(overruns > 100 && skipped > 100 && gaps > 100 && last_mode == "free" && faults == 0 && w < 1e-4)
+      # A slew command due in a skipped tick starts with the next tick run: 0.3 rad/s x 1 ms =
+      # 3e-4 rad per tick late; 1e-3 rad allows three.
+      exit !(overruns > 100 && skipped > 100 && gaps > 100 && last_mode == "free" && faults == 0 && w < 1e-3)
     }' "$out/seeker_slew_sil_float.csv" "$out/overrun_m4f.csv" || fail "overrun: counters, mode or trajectory not as expected"
+  if pil_run overrun_m4f_again cortex-m4f mps2-an386 float 1000 --pil-tick-clocks "$period"; then
+    if cmp -s "$out/overrun_m4f.csv" "$out/overrun_m4f_again.csv"; then
+      echo "  run again: identical CSV (every step's cost, every overrun and skipped tick)"
+    else
+      fail "overrun: a second run differs from the first"
+    fi
+  fi
 fi
 
 echo "== 4. wire faults on the gyro link (M4F): crc, drop, duplicate, noise, stall"

@@ -264,9 +264,10 @@ void transparent_wire() {
   EXPECT_EQ(port.counters().torque_frames, 1501u);
 }
 
+// In float, the Cortex-M4F's case (the double one runs end to end on the Cortex-M7 in
+// scripts/pil.sh; a second instantiation of the component doubles this file's build time).
 TEST(LinkPort, GivenACleanLinkThenTheComponentFliesBitForBitAsWithTheStubAsItsPort) {
   transparent_wire<float>();
-  transparent_wire<double>();
 }
 
 }  // namespace

@@ -51,7 +51,7 @@ void config_round_trip() {
   in.component = distinct_config<T>();
   in.timer_period = 25000;
   const HarnessFrame<T> f = over_the_wire<T>(encode_config(in, 3));
-  EXPECT_EQ(f.length, 18 * sizeof(T) + 25);
+  EXPECT_EQ(f.length, 19 * sizeof(T) + 33);
   Config<T> out;
   ASSERT_TRUE(decode_config(f, out));
   EXPECT_EQ(std::memcmp(&out.component.tick_s, &in.component.tick_s, sizeof(T)), 0);
@@ -88,9 +88,9 @@ void tick_round_trip() {
   in.guidance.nav_valid = true;
   in.guidance.slew_rate_cmd_rad_s = Vector2<T>(T(0.3), T(-0.2));
   for (int i = 0; i < 9; ++i) in.guidance.R_earth_to_body(i / 3, i % 3) = T(i) / T(7);
-  in.guidance.body_rate_rad_s = Vector2<T>(T(0.05), T(-0.03));
+  in.guidance.body_rate_rad_s = Vector3<T>(T(0.5), T(0.05), T(-0.03));
   const HarnessFrame<T> f = over_the_wire<T>(encode_tick_in(in, 1));
-  EXPECT_EQ(f.length, 6 + 13 * sizeof(T));
+  EXPECT_EQ(f.length, 6 + 14 * sizeof(T));
   TickIn<T> out;
   ASSERT_TRUE(decode_tick_in(f, out));
   EXPECT_EQ(out.tick, in.tick);
@@ -151,7 +151,7 @@ void telemetry_round_trip() {
   m.attitude_gyro_to_earth = Quaternion<T>(T(0.5), T(0.5), T(-0.5), T(0.5));
   m.spin_hz = T(399.5);
   const HarnessFrame<T> f = over_the_wire<T>(encode_telemetry(m, 9));
-  EXPECT_EQ(f.length, 69 + 19 * sizeof(T));
+  EXPECT_EQ(f.length, 81 + 19 * sizeof(T));
   GyroTelemetry<T> out;
   ASSERT_TRUE(decode_telemetry(f, out));
   EXPECT_EQ(out.tick, 5u);  // low 32 bits

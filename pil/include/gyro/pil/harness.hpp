@@ -36,6 +36,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 
 #include "gyro/component_types.hpp"
 #include "gyro/gyro_model.hpp"  // ConfigCheck
@@ -57,8 +59,8 @@ inline constexpr std::uint8_t kTickOut = 0x14u;
 inline constexpr std::uint8_t kTelemetry = 0x15u;
 inline constexpr std::uint8_t kStop = 0x16u;
 
-inline constexpr std::size_t kConfigReals = 18;
-inline constexpr std::size_t kConfigCounts = 5;
+inline constexpr std::size_t kConfigReals = 19;
+inline constexpr std::size_t kConfigCounts = 7;
 inline constexpr std::size_t kTelemetryReals = 19;
 inline constexpr std::size_t kFieldNameBytes = 24;
 
@@ -67,7 +69,7 @@ struct HarnessMessages {
   static constexpr std::size_t kHelloPayload = 7;
   static constexpr std::size_t kConfigPayload = kConfigReals * sizeof(T) + 1 + 4 * kConfigCounts + 4;
   static constexpr std::size_t kConfigAckPayload = 1 + kFieldNameBytes;
-  static constexpr std::size_t kTickInPayload = 6 + 13 * sizeof(T);
+  static constexpr std::size_t kTickInPayload = 6 + 14 * sizeof(T);
   static constexpr std::size_t kTickOutPayload = 88;
   static constexpr std::size_t kTelemetryPayload = 9 + 4 * kComponentFlagCount + kTelemetryReals * sizeof(T);
   static constexpr std::size_t kStopPayload = 1;
@@ -164,10 +166,12 @@ struct ConfigFields {
       &C::max_pickoff_step_rad,
       &C::estimator_gain,
       &C::residual_limit_rad,
+      &C::max_body_rate_rad_s,
   };
   static constexpr std::uint32_t C::*kCounts[kConfigCounts] = {
-      &C::residual_persistence_ticks, &C::invalid_persistence_ticks, &C::spin_low_persistence_ticks,
-      &C::torquer_fail_persistence_ticks, &C::uncage_settle_ticks,
+      &C::residual_persistence_ticks,     &C::invalid_persistence_ticks, &C::spin_low_persistence_ticks,
+      &C::torquer_fail_persistence_ticks, &C::uncage_settle_ticks,       &C::max_tick_gap,
+      &C::input_persistence_ticks,
   };
   static constexpr bool C::*kSwitches[2] = {&C::use_spin_readback, &C::friction_compensation};
 };
@@ -209,13 +213,50 @@ template <typename T, std::size_t N>
   return f;
 }
 
+// Compile-time comparison of two names (at most 64 characters).
+[[nodiscard]] constexpr bool same_text(const char* a, const char* b) noexcept {
+  for (std::size_t i = 0; i < 64; ++i) {
+    if (a[i] != b[i]) return false;  // NOLINT(cppcoreguidelines-pro-bounds-pointer-arithmetic): C strings
+    if (a[i] == '\0') return true;   // NOLINT(cppcoreguidelines-pro-bounds-pointer-arithmetic)
+  }
+  return false;
+}
+
+// The last value of each enumeration the harness carries; a value added after it breaks the
+// build here (its to_string() would no longer be "unknown ...").
+inline constexpr Status kLastStatus = Status::kInputIgnored;
+inline constexpr GyroMode kLastMode = GyroMode::kFault;
+static_assert(same_text(to_string(static_cast<Status>(static_cast<int>(kLastStatus) + 1)), "unknown status"),
+              "a Status was added: update kLastStatus");
+static_assert(same_text(to_string(static_cast<GyroMode>(static_cast<int>(kLastMode) + 1)), "unknown"),
+              "a GyroMode was added: update kLastMode");
+
+// The number of members of an aggregate (the largest brace initialiser it accepts).
+struct AnyField {
+  template <typename U>
+  constexpr operator U() const noexcept;  // NOLINT(google-explicit-constructor): only in decltype
+};
+template <typename A, typename Seq, typename = void>
+struct BraceInitialisable : std::false_type {};
+template <typename A, std::size_t... I>
+struct BraceInitialisable<A, std::index_sequence<I...>, std::void_t<decltype(A{(void(I), AnyField{})...})>>
+    : std::true_type {};
+template <typename A, std::size_t N = 0>
+[[nodiscard]] constexpr std::size_t field_count() noexcept {
+  if constexpr (BraceInitialisable<A, std::make_index_sequence<N + 1>>::value) {
+    return field_count<A, N + 1>();
+  } else {
+    return N;
+  }
+}
+
 // Enumerations and booleans arrive as bytes: only the values they can take are accepted, so
 // every frame a decoder accepts encodes back to the same bytes.
 [[nodiscard]] constexpr bool known_status(std::uint8_t v) noexcept {
-  return v <= static_cast<std::uint8_t>(Status::kWrongMode);
+  return v <= static_cast<std::uint8_t>(kLastStatus);
 }
 [[nodiscard]] constexpr bool known_mode(std::uint8_t v) noexcept {
-  return v <= static_cast<std::uint8_t>(GyroMode::kFault);
+  return v <= static_cast<std::uint8_t>(kLastMode);
 }
 [[nodiscard]] constexpr bool boolean(std::uint8_t v) noexcept { return v <= 1u; }
 
@@ -233,6 +274,10 @@ template <typename T>
 }
 
 }  // namespace detail
+
+// Every member of the configuration is in the tables (a new one breaks the build here).
+static_assert(detail::field_count<GyroComponentConfig<float>>() == kConfigReals + kConfigCounts + 2,
+              "GyroComponentConfig changed: update ConfigFields (and docs/pil-protocol.md)");
 
 template <typename T>
 [[nodiscard]] HarnessFrame<T> encode_hello(const Hello& h, std::uint8_t seq) noexcept {
@@ -335,6 +380,7 @@ template <typename T>
   }
   w.real(g.body_rate_rad_s(0));
   w.real(g.body_rate_rad_s(1));
+  w.real(g.body_rate_rad_s(2));
   return detail::seal<T>(f, w);
 }
 // false: not a tick_in frame, or reserved bits set. Values are passed on as received: the
@@ -357,6 +403,7 @@ template <typename T>
   }
   t.guidance.body_rate_rad_s(0) = r.template real<T>();
   t.guidance.body_rate_rad_s(1) = r.template real<T>();
+  t.guidance.body_rate_rad_s(2) = r.template real<T>();
   if (!detail::consumed(r, f.length)) return false;
   out = t;
   return true;

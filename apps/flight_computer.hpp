@@ -41,7 +41,8 @@ class FlightComputer {
 template <typename T>
 class LocalFlightComputer final : public FlightComputer<T> {
  public:
-  explicit LocalFlightComputer(SimulatedGyro<T>& stub) : component_(stub) {}
+  // `hardware`: the gyro behind its port (the simulated gyro in a SIL run).
+  explicit LocalFlightComputer(GyroPort<T>& hardware) : component_(hardware) {}
 
   [[nodiscard]] ConfigCheck configure(const GyroComponentConfig<T>& config) override {
     return component_.configure(config);

@@ -54,8 +54,8 @@ void remove_socket(const std::string& path) noexcept {
 template <typename T>
 class PilFlightComputer final : public FlightComputer<T> {
  public:
-  PilFlightComputer(SimulatedGyro<T>& stub, const PilOptions& options, PilSummary& summary)
-      : stub_(stub), options_(options), summary_(summary) {
+  PilFlightComputer(GyroPort<T>& hardware, const PilOptions& options, PilSummary& summary)
+      : hardware_(hardware), options_(options), summary_(summary) {
     if (!options.firmware.empty()) {
       check_socket_path(options.socket);
       qemu_.emplace(qemu_command(options.qemu, options.machine, options.firmware, options.socket),
@@ -204,7 +204,7 @@ class PilFlightComputer final : public FlightComputer<T> {
   void send_tick(std::uint64_t tick, const GuidanceInput<T>& in) {
     std::vector<std::uint8_t> wire;
     PickoffReading<T> reading;
-    if (stub_.read_pickoffs(reading) == PortStatus::kOk) {
+    if (hardware_.read_pickoffs(reading) == PortStatus::kOk) {
       std::array<std::uint8_t, link::kGyroLinkFrameBytes<T>> frame{};
       const std::size_t n = link::encode_frame(link::encode_pickoff(reading, downlink_seq_++), frame);
       wire = faulted_downlink(std::span<const std::uint8_t>(frame.data(), n), faults_, tick);
@@ -234,10 +234,10 @@ class PilFlightComputer final : public FlightComputer<T> {
       for (link::GyroLinkFrame<T> f; uplink_.next(f);) fresh = link::decode_torque(f, torque) || fresh;
     }
     summary_.uplink = uplink_.counters();
-    if (fresh && stub_.write_torquer(torque) == PortStatus::kOk) ++summary_.torque_commands;
+    if (fresh && hardware_.write_torquer(torque) == PortStatus::kOk) ++summary_.torque_commands;
   }
 
-  SimulatedGyro<T>& stub_;
+  GyroPort<T>& hardware_;  // the gyro hardware (the simulated gyro): its port plays the electronics
   PilOptions options_;
   PilSummary& summary_;
   std::optional<QemuProcess> qemu_;
@@ -337,13 +337,13 @@ std::vector<std::uint8_t> faulted_downlink(std::span<const std::uint8_t> frame, 
   return out;
 }
 
-std::unique_ptr<FlightComputer<float>> make_pil_flight(SimulatedGyro<float>& stub, const PilOptions& options,
+std::unique_ptr<FlightComputer<float>> make_pil_flight(GyroPort<float>& hardware, const PilOptions& options,
                                                        PilSummary& summary) {
-  return std::make_unique<PilFlightComputer<float>>(stub, options, summary);
+  return std::make_unique<PilFlightComputer<float>>(hardware, options, summary);
 }
-std::unique_ptr<FlightComputer<double>> make_pil_flight(SimulatedGyro<double>& stub, const PilOptions& options,
+std::unique_ptr<FlightComputer<double>> make_pil_flight(GyroPort<double>& hardware, const PilOptions& options,
                                                         PilSummary& summary) {
-  return std::make_unique<PilFlightComputer<double>>(stub, options, summary);
+  return std::make_unique<PilFlightComputer<double>>(hardware, options, summary);
 }
 
 }  // namespace gyro::sil

@@ -17,12 +17,13 @@
 
 namespace gyro::sil {
 
-// The flight computer on the target; `summary` is filled in as the run goes. Starts QEMU when
-// options.firmware is set, else connects to the one listening on options.socket.
-[[nodiscard]] std::unique_ptr<FlightComputer<float>> make_pil_flight(SimulatedGyro<float>& stub,
+// The flight computer on the target, with `hardware` (the simulated gyro, behind its port) on
+// the host; `summary` is filled in as the run goes. Starts QEMU when options.firmware is set,
+// else connects to the one listening on options.socket.
+[[nodiscard]] std::unique_ptr<FlightComputer<float>> make_pil_flight(GyroPort<float>& hardware,
                                                                      const PilOptions& options,
                                                                      PilSummary& summary);
-[[nodiscard]] std::unique_ptr<FlightComputer<double>> make_pil_flight(SimulatedGyro<double>& stub,
+[[nodiscard]] std::unique_ptr<FlightComputer<double>> make_pil_flight(GyroPort<double>& hardware,
                                                                       const PilOptions& options,
                                                                       PilSummary& summary);
 

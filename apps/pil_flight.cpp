@@ -13,6 +13,7 @@
 #include "gyro/pil/harness.hpp"
 #include "pil_connection.hpp"
 #include "sil_runner.hpp"
+#include "wire_faults.hpp"
 
 namespace gyro::sil {
 
@@ -23,17 +24,6 @@ using Clock = std::chrono::steady_clock;
 constexpr std::array<std::string_view, 12> kPilColumns = {
     "pil_ran",      "pil_step_clocks", "pil_step_instructions", "pil_overruns",    "pil_skipped",    "pil_readings",
     "pil_timeouts", "pil_bus_errors",  "pil_duplicates",        "pil_frames_lost", "pil_crc_errors", "pil_wire_faults"};
-
-constexpr std::size_t kNoiseBytes = 16;
-
-std::uint64_t splitmix64(std::uint64_t x) noexcept {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30u)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27u)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31u);
-}
-
-bool has(std::uint32_t faults, WireFaultKind k) noexcept { return (faults & (1u << static_cast<unsigned>(k))) != 0u; }
 
 std::uint32_t low32(std::uint64_t v) noexcept { return static_cast<std::uint32_t>(v & 0xFFFFFFFFu); }
 
@@ -229,7 +219,7 @@ class PilFlightComputer final : public FlightComputer<T> {
     Vector2<T> torque = Vector2<T>::Zero();
     for (std::uint8_t i = 0; i < count; ++i) {
       const std::uint8_t b = socket_->read_byte(options_.timeout_s);
-      if (has(faults_, WireFaultKind::kStall)) continue;
+      if (has_wire_fault(faults_, WireFaultKind::kStall)) continue;
       (void)uplink_.push(b);
       for (link::GyroLinkFrame<T> f; uplink_.next(f);) fresh = link::decode_torque(f, torque) || fresh;
     }
@@ -258,84 +248,6 @@ class PilFlightComputer final : public FlightComputer<T> {
 };
 
 }  // namespace
-
-const char* wire_fault_name(WireFaultKind k) noexcept {
-  switch (k) {
-    case WireFaultKind::kCorruptCrc: return "crc";
-    case WireFaultKind::kDrop: return "drop";
-    case WireFaultKind::kDuplicate: return "duplicate";
-    case WireFaultKind::kStall: return "stall";
-    case WireFaultKind::kNoise: return "noise";
-  }
-  return "unknown";
-}
-
-std::optional<WireFault> parse_wire_fault(std::string_view text, std::string& error) {
-  const std::size_t at = text.find('@');
-  if (at == std::string_view::npos) {
-    error = "expected KIND@TICK[+TICKS], e.g. crc@600+5";
-    return std::nullopt;
-  }
-  const std::string_view name = text.substr(0, at);
-  std::optional<WireFaultKind> kind;
-  for (int i = 0; i < kWireFaultKindCount; ++i) {
-    if (name == wire_fault_name(static_cast<WireFaultKind>(i))) kind = static_cast<WireFaultKind>(i);
-  }
-  if (!kind) {
-    error = "unknown wire fault '" + std::string(name) + "' (crc, drop, duplicate, stall, noise)";
-    return std::nullopt;
-  }
-  const auto number = [](std::string_view s, std::uint64_t& out) {
-    if (s.empty() || s.size() > 18) return false;
-    out = 0;
-    for (char c : s) {
-      if (c < '0' || c > '9') return false;
-      out = out * 10u + static_cast<std::uint64_t>(c - '0');
-    }
-    return true;
-  };
-  const std::string_view rest = text.substr(at + 1);
-  const std::size_t plus = rest.find('+');
-  WireFault f;
-  f.kind = *kind;
-  if (!number(rest.substr(0, plus), f.start_tick) ||
-      (plus != std::string_view::npos && (!number(rest.substr(plus + 1), f.ticks) || f.ticks == 0u))) {
-    error = "bad tick or tick count in '" + std::string(text) + "' (KIND@TICK[+TICKS], TICKS >= 1)";
-    return std::nullopt;
-  }
-  return f;
-}
-
-std::uint32_t active_wire_faults(const std::vector<WireFault>& faults, std::uint64_t tick) noexcept {
-  std::uint32_t bits = 0;
-  for (const WireFault& f : faults) {
-    if (tick >= f.start_tick && tick - f.start_tick < f.ticks) bits |= 1u << static_cast<unsigned>(f.kind);
-  }
-  return bits;
-}
-
-std::vector<std::uint8_t> faulted_downlink(std::span<const std::uint8_t> frame, std::uint32_t faults,
-                                           std::uint64_t tick) {
-  std::vector<std::uint8_t> out;
-  if (has(faults, WireFaultKind::kStall) || has(faults, WireFaultKind::kDrop)) return out;
-  if (has(faults, WireFaultKind::kNoise)) {
-    std::uint64_t r = splitmix64(tick);
-    for (std::size_t i = 0; i < kNoiseBytes; ++i) {
-      if (i % 8u == 0u && i != 0u) r = splitmix64(r);
-      out.push_back(static_cast<std::uint8_t>((r >> (8u * (i % 8u))) & 0xFFu));
-    }
-  }
-  const std::size_t start = out.size();
-  out.insert(out.end(), frame.begin(), frame.end());
-  if (has(faults, WireFaultKind::kCorruptCrc) && frame.size() > link::kFrameOverhead) {
-    out[start + link::kHeaderBytes] ^= 0x01u;  // the first payload byte: the CRC no longer matches
-  }
-  if (has(faults, WireFaultKind::kDuplicate)) {
-    const std::vector<std::uint8_t> copy(out.begin() + static_cast<std::ptrdiff_t>(start), out.end());
-    out.insert(out.end(), copy.begin(), copy.end());
-  }
-  return out;
-}
 
 std::unique_ptr<FlightComputer<float>> make_pil_flight(GyroPort<float>& hardware, const PilOptions& options,
                                                        PilSummary& summary) {

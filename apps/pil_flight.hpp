@@ -7,10 +7,7 @@
 // it, in its own time, which stands still while the host works.
 #pragma once
 
-#include <cstdint>
 #include <memory>
-#include <span>
-#include <vector>
 
 #include "flight_computer.hpp"
 #include "pil_options.hpp"
@@ -26,13 +23,5 @@ namespace gyro::sil {
 [[nodiscard]] std::unique_ptr<FlightComputer<double>> make_pil_flight(GyroPort<double>& hardware,
                                                                       const PilOptions& options,
                                                                       PilSummary& summary);
-
-// The wire faults active at `tick`: bit (1 << kind) for each.
-[[nodiscard]] std::uint32_t active_wire_faults(const std::vector<WireFault>& faults, std::uint64_t tick) noexcept;
-
-// What the electronics' encoded frame becomes on the wire at `tick` under the active faults
-// (stall > drop > the others; noise first, then the frame, corrupted or twice).
-[[nodiscard]] std::vector<std::uint8_t> faulted_downlink(std::span<const std::uint8_t> frame, std::uint32_t faults,
-                                                         std::uint64_t tick);
 
 }  // namespace gyro::sil

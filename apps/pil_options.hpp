@@ -6,33 +6,13 @@
 #include <cstdint>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "gyro/link/frame_decoder.hpp"
 #include "gyro/pil/harness.hpp"
+#include "wire_faults.hpp"
 
 namespace gyro::sil {
-
-// Faults injected by the host on the gyro link, for the ticks [start_tick, start_tick + ticks):
-//   crc        the pickoff frame is sent with one payload bit flipped (its CRC no longer matches)
-//   drop       the pickoff frame is not sent
-//   duplicate  the pickoff frame is sent twice
-//   stall      nothing crosses the link either way (the torque frames are lost too)
-//   noise      16 bytes of noise precede the pickoff frame
-enum class WireFaultKind : std::uint8_t { kCorruptCrc, kDrop, kDuplicate, kStall, kNoise };
-inline constexpr int kWireFaultKindCount = 5;
-
-[[nodiscard]] const char* wire_fault_name(WireFaultKind k) noexcept;
-
-struct WireFault {
-  WireFaultKind kind{WireFaultKind::kDrop};
-  std::uint64_t start_tick{0};
-  std::uint64_t ticks{1};
-};
-
-// "KIND@TICK" or "KIND@TICK+TICKS" (e.g. "crc@600+5"); nullopt with `error` set otherwise.
-[[nodiscard]] std::optional<WireFault> parse_wire_fault(std::string_view text, std::string& error);
 
 struct PilOptions {
   std::string socket;                    // UNIX socket of QEMU's serial chardev (server side)

@@ -11,7 +11,7 @@
 #include "gyro/link/byte_fifo.hpp"
 #include "gyro/link/gyro_link_messages.hpp"
 #include "gyro/link/link_gyro_port.hpp"
-#include "pil_flight.hpp"
+#include "wire_faults.hpp"
 
 namespace gyro::sil {
 namespace {
@@ -49,7 +49,7 @@ class PortUnderFault : public ::testing::Test {
   // The port's answer to one tick's bytes under `faults`.
   PortStatus tick(std::uint32_t faults, std::uint64_t k) {
     PickoffReading<float> r;
-    r.gimbal_angle_rad = Vector2<float>(0.01f, 0.02f);
+    r.gimbal_angle_rad = Eigen::Vector2f(0.01f, 0.02f);
     r.sequence = static_cast<std::uint32_t>(k);
     r.valid = true;
     std::array<std::uint8_t, link::kGyroLinkFrameBytes<float>> frame{};

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Processor-in-the-loop checks (docs/pil.md): the flight component on the emulated target, the
 # gyro and the body on the host (gyro_sil --pil), over the serial line, under QEMU -icount.
-#   1. seeker slew on the Cortex-M4F (float), 2,000 ticks, with its plot: the CSV matches the
-#      host SIL run of the same scenario in float within the tolerances below
+#   1. seeker slew on the Cortex-M4F (float), its 1,500 ticks, with its plot: the CSV matches
+#      the host SIL run of the same scenario in float within the tolerances below
 #   2. seeker slew on the Cortex-M7 (double), 300 ticks: matches the double SIL run
 #   3. overrun: the M4F with a timer period of half a step: the overrun counter rises, ticks
 #      are skipped, and the component keeps flying (free, no fault, on the SIL trajectory);
@@ -13,6 +13,10 @@
 # and prints the figures: exchanges per second, instructions per step (mean, worst and where),
 # the largest PIL-vs-host differences. Exits non-zero if any check fails.
 #
+# The runs are bound by QEMU's serial line (a byte at a time, each after a turn of its main
+# loop), not by the CPU: they run side by side, 1, 2 and 4 at once, then the two overrun runs
+# (their timer period comes from run 1's step cost).
+#
 #   scripts/pil.sh            (after scripts/test.sh and the cortex-m4f/cortex-m7 presets, or alone)
 # Needs: qemu-system-arm, the arm-none-eabi toolchain, the host build's packages.
 set -euo pipefail
@@ -21,7 +25,7 @@ cd "$(dirname "$0")/.."
 out=build/pil
 mkdir -p "$out"
 sockets=$(mktemp -d /tmp/gyro-pil.XXXXXX)  # short paths: a UNIX socket path has at most 107 bytes
-trap 'rm -rf "$sockets"' EXIT
+trap 'wait; rm -rf "$sockets"' EXIT  # runs still going end by themselves (done or timed out)
 failed=0
 fail() { echo "pil: FAILED: $*"; failed=1; }
 
@@ -49,6 +53,23 @@ pil_run() {
     return 1
   fi
   echo "$name: $ticks ticks in $((SECONDS - start)) s"
+}
+
+# launch <name> <pil_run arguments...>: pil_run in the background, its lines kept for collect.
+declare -A pids
+launch() {
+  local name=$1
+  pil_run "$@" > "$out/$name.out" 2>&1 &
+  pids[$name]=$!
+}
+
+# collect <name>: waits for a launched run and prints its lines; non-zero if it failed.
+collect() {
+  local rc=0
+  wait "${pids[$1]}" || rc=$?
+  cat "$out/$1.out"
+  [ "$rc" -eq 0 ] || failed=1
+  return "$rc"
 }
 
 # figures <csv>: instructions per step from the CSV's pil_step_instructions.
@@ -100,36 +121,50 @@ compare() {
 
 # Absolute tolerances of the float run (the loop's scales: angles 0.1 rad, rates 0.3 rad/s,
 # torques 0.04 N m); every other column (time, mode, flags, request, truth and fault bits,
-# step status) must be identical.
+# step status) must be identical. A float's unit in the last place is 7.5e-9 at 0.1 and 3e-8
+# at 0.3: the rate command is held to a few of them; the true cone comes from an arc cosine,
+# where one unit of its cosine (6e-8) moves a 0.1 rad cone by 6e-7 rad.
 float_tol="gimbal_pitch=1e-6,gimbal_yaw=1e-6,gimbal_pitch_meas=1e-6,gimbal_yaw_meas=1e-6"
 float_tol+=",theta_rate=2e-6,psi_rate=2e-6,torque_pitch=1e-8,torque_yaw=1e-8"
 float_tol+=",gimbal_pitch_pred=1e-6,gimbal_yaw_pred=1e-6,residual_pitch=1e-6,residual_yaw=1e-6"
-float_tol+=",theta_rate_true=1e-6,psi_rate_true=1e-6,rate_cmd_pitch=1e-9,rate_cmd_yaw=1e-9"
+float_tol+=",theta_rate_true=1e-6,psi_rate_true=1e-6,rate_cmd_pitch=1e-7,rate_cmd_yaw=1e-7"
 float_tol+=",slew_cmd_pitch=0,slew_cmd_yaw=0,nutation_pitch=1e-9,nutation_yaw=1e-9,nutation_pitch_true=1e-9"
-float_tol+=",nutation_yaw_true=1e-9,cone_true=1e-6,spin_hz=0,spin_hz_true=0"
+float_tol+=",nutation_yaw_true=1e-9,cone_true=1e-5,spin_hz=0,spin_hz_true=0"
 float_tol+=",torque_applied_pitch=1e-8,torque_applied_yaw=1e-8,body_pitch_rate=0,body_yaw_rate=0"
 double_tol=$(sed 's/=[0-9e.-]*/=1e-12/g' <<< "$float_tol")
 
-echo "== 1. seeker slew, Cortex-M4F (float), 2,000 ticks: PIL against the host"
-"$sil" "$scenario" --precision float --ticks 2000 -o "$out/seeker_slew_sil_float.csv" -q
-if pil_run seeker_slew_m4f cortex-m4f mps2-an386 float 2000 --plot "$out/seeker_slew_m4f.png"; then
+"$sil" "$scenario" --precision float -o "$out/seeker_slew_sil_float.csv" -q
+"$sil" "$scenario" --precision double --ticks 300 -o "$out/seeker_slew_sil_double.csv" -q
+all_start=$SECONDS
+launch seeker_slew_m4f cortex-m4f mps2-an386 float 1500 --plot "$out/seeker_slew_m4f.png"
+launch seeker_slew_m7 cortex-m7 mps2-an500 double 300
+launch wire_faults_m4f cortex-m4f mps2-an386 float 1000 \
+  --pil-fault crc@600+5 --pil-fault drop@700+5 --pil-fault duplicate@800+10 --pil-fault noise@850+10 \
+  --pil-fault stall@900+50
+
+echo "== 1. seeker slew, Cortex-M4F (float), 1,500 ticks: PIL against the host"
+if collect seeker_slew_m4f; then
   figures "$out/seeker_slew_m4f.csv"
   compare "$out/seeker_slew_sil_float.csv" "$out/seeker_slew_m4f.csv" "$float_tol" || fail "M4F float run outside tolerance"
   [ -s "$out/seeker_slew_m4f.png" ] || fail "no plot from the PIL run"
 fi
+mean_clocks=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next } $c["pil_ran"] == 1 { n++; s += $c["pil_step_clocks"] }
+                       END { printf "%d", n ? s / n : 200 }' "$out/seeker_slew_m4f.csv" 2>/dev/null || echo 200)
+period=$((mean_clocks / 2))
+launch overrun_m4f cortex-m4f mps2-an386 float 1000 --pil-tick-clocks "$period"
+launch overrun_m4f_again cortex-m4f mps2-an386 float 1000 --pil-tick-clocks "$period"
 
 echo "== 2. seeker slew, Cortex-M7 (double), 300 ticks: PIL against the host"
-"$sil" "$scenario" --precision double --ticks 300 -o "$out/seeker_slew_sil_double.csv" -q
-if pil_run seeker_slew_m7 cortex-m7 mps2-an500 double 300; then
+if collect seeker_slew_m7; then
   figures "$out/seeker_slew_m7.csv"
   compare "$out/seeker_slew_sil_double.csv" "$out/seeker_slew_m7.csv" "$double_tol" || fail "M7 double run outside tolerance"
 fi
 
 echo "== 3. overrun: M4F timer period of half a step"
-mean_clocks=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next } $c["pil_ran"] == 1 { n++; s += $c["pil_step_clocks"] }
-                       END { printf "%d", n ? s / n : 200 }' "$out/seeker_slew_m4f.csv" 2>/dev/null || echo 200)
-period=$((mean_clocks / 2))
-if pil_run overrun_m4f cortex-m4f mps2-an386 float 1000 --pil-tick-clocks "$period"; then
+overrun_ok=1
+collect overrun_m4f || overrun_ok=0
+collect overrun_m4f_again || overrun_ok=0
+if [ "$overrun_ok" -eq 1 ]; then
   figures "$out/overrun_m4f.csv"
   awk -F, -v period="$period" '
     NR == FNR { if (FNR == 1) for (i = 1; i <= NF; i++) s[$i] = i; else { gp[FNR] = $s["gimbal_pitch"]; gy[FNR] = $s["gimbal_yaw"] }; next }
@@ -146,19 +181,15 @@ if pil_run overrun_m4f cortex-m4f mps2-an386 float 1000 --pil-tick-clocks "$peri
       # 3e-4 rad per tick late; 1e-3 rad allows three.
       exit !(overruns > 100 && skipped > 100 && gaps > 100 && last_mode == "free" && faults == 0 && w < 1e-3)
     }' "$out/seeker_slew_sil_float.csv" "$out/overrun_m4f.csv" || fail "overrun: counters, mode or trajectory not as expected"
-  if pil_run overrun_m4f_again cortex-m4f mps2-an386 float 1000 --pil-tick-clocks "$period"; then
-    if cmp -s "$out/overrun_m4f.csv" "$out/overrun_m4f_again.csv"; then
-      echo "  run again: identical CSV (every step's cost, every overrun and skipped tick)"
-    else
-      fail "overrun: a second run differs from the first"
-    fi
+  if cmp -s "$out/overrun_m4f.csv" "$out/overrun_m4f_again.csv"; then
+    echo "  run again: identical CSV (every step's cost, every overrun and skipped tick)"
+  else
+    fail "overrun: a second run differs from the first"
   fi
 fi
 
 echo "== 4. wire faults on the gyro link (M4F): crc, drop, duplicate, noise, stall"
-if pil_run wire_faults_m4f cortex-m4f mps2-an386 float 1000 \
-     --pil-fault crc@600+5 --pil-fault drop@700+5 --pil-fault duplicate@800+10 --pil-fault noise@850+10 \
-     --pil-fault stall@900+50; then
+if collect wire_faults_m4f; then
   awk -F, '
     function bit(v, b) { return int(v / b) % 2 }
     NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
@@ -187,6 +218,7 @@ if pil_run wire_faults_m4f cortex-m4f mps2-an386 float 1000 \
 fi
 
 grep -h "exchanges/s\|instructions mean" "$out"/seeker_slew_m4f.log "$out"/seeker_slew_m7.log 2>/dev/null | sed 's/^gyro_sil: /  /' || true
+echo "the PIL runs took $((SECONDS - all_start)) s side by side"
 if [ "$failed" -ne 0 ]; then
   echo "pil: FAILED (outputs in $out/)"
   exit 1

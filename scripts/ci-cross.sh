@@ -4,7 +4,7 @@
 #   cortex-m4f, cortex-m7   bare-metal firmware images under qemu-system-arm (MPS2)
 #   aarch64, armhf, ppc, riscv64   the GoogleTest suite under qemu-user
 # then prints the bare-metal footprint table (scripts/footprint.sh), runs the
-# processor-in-the-loop checks on both (scripts/pil.sh: 40 to 90 s) and prints each
+# processor-in-the-loop checks on both (scripts/pil.sh: 20 to 40 s) and prints each
 # target's time.
 #
 #   scripts/ci-cross.sh [preset...]        (default: all six)

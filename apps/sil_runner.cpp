@@ -4,12 +4,16 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
 #include "body_motion.hpp"
+#include "flight_computer.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "pil_flight.hpp"
 #include "scenario_limits.hpp"
 
 namespace gyro::sil {
@@ -249,7 +253,7 @@ std::string refusal(const Scenario& s, const std::string& path, const char* who,
 
 // Configures both sides; a refusal names the scenario's JSON field.
 template <typename T>
-void configure_both(const Scenario& s, SimulatedGyro<T>& stub, GyroComponent<T>& comp) {
+void configure_both(const Scenario& s, SimulatedGyro<T>& stub, FlightComputer<T>& comp) {
   const ConfigCheck g = stub.configure(cast_config<T>(s.gyro));
   if (!g.ok()) {
     const std::string path = gyro_field_path(s, g.field ? g.field : "(unnamed)");
@@ -318,11 +322,18 @@ class Progress {
 
 template <typename T>
 RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& options) {
+  RunSummary sum;
   SimulatedGyro<T> stub;
-  GyroComponent<T> comp(stub);
+  std::unique_ptr<FlightComputer<T>> flight;
+  if (options.pil) {
+    sum.pil.emplace();
+    flight = make_pil_flight(stub, *options.pil, *sum.pil);
+  } else {
+    flight = std::make_unique<LocalFlightComputer<T>>(stub);
+  }
+  FlightComputer<T>& comp = *flight;
   configure_both<T>(s, stub, comp);
 
-  RunSummary sum;
   sum.precision = s.run.precision;
   sum.ticks = s.run.ticks;
 
@@ -342,7 +353,9 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
   if (started != Status::kOk) throw RunError(std::string("SimulatedGyro::start refused: ") + to_string(started));
   const Status active = comp.activate();
   if (active != Status::kOk) throw RunError(std::string("GyroComponent::activate refused: ") + to_string(active));
+  Status last_step = Status::kOk;  // held over the ticks a processor in the loop skipped
 
+  observer.set_extra_columns(comp.extra_columns(), [&comp](CsvWriter& w) { comp.write_extras(w); });
   observer.on_start();
   TickRecord rec;
   for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
@@ -359,8 +372,10 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     in.nav_valid = guidance.nav_valid();
     in.R_earth_to_body = body.R_earth_to_body().cast<T>();
     in.body_rate_rad_s = body.rate_rad_s().cast<T>();
-    const Status step = comp.step(k, in);
-    if (step != Status::kOk && step != Status::kInputIgnored) ++sum.refused_steps;
+    const std::optional<Status> ran = comp.step(k, in);
+    if (ran && *ran != Status::kOk && *ran != Status::kInputIgnored) ++sum.refused_steps;
+    const Status step = ran.value_or(last_step);
+    last_step = step;
 
     const GyroTelemetry<T>& tm = comp.telemetry();
     const Vector2<T> truth_angle = stub.gimbal_angle_rad();
@@ -407,6 +422,7 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     progress.tick(k, rec.t_s);
   }
 
+  comp.finish();
   sum.final_mode = comp.mode();
   sum.counters = comp.telemetry().counters;
   sum.wall_s = progress.elapsed_s();
@@ -476,7 +492,16 @@ int csv_column(std::string_view name) noexcept {
   return 0;
 }
 
-void CsvObserver::on_start() { csv_.header(csv_columns()); }
+void CsvObserver::set_extra_columns(std::span<const std::string_view> names, std::function<void(CsvWriter&)> write) {
+  extra_names_ = names;
+  write_extras_ = std::move(write);
+}
+
+void CsvObserver::on_start() {
+  std::vector<std::string_view> names(csv_columns().begin(), csv_columns().end());
+  names.insert(names.end(), extra_names_.begin(), extra_names_.end());
+  csv_.header(names);
+}
 
 void CsvObserver::on_tick(const TickRecord& r) {
   for_each_column(r, [&](const Column&, const auto& v) {
@@ -489,6 +514,7 @@ void CsvObserver::on_tick(const TickRecord& r) {
       csv_.text(v);
     }
   });
+  if (write_extras_) write_extras_(csv_);
   csv_.end_row();
   if (!csv_.ok()) throw RunError("writing the CSV failed at tick " + std::to_string(r.tick));
   if (csv_.bytes() > max_bytes_) {
@@ -501,11 +527,11 @@ void check_configs(const Scenario& s) {
   check_precision_range(s);
   if (s.run.precision == Precision::kFloat) {
     SimulatedGyro<float> stub;
-    GyroComponent<float> comp(stub);
+    LocalFlightComputer<float> comp(stub);
     configure_both<float>(s, stub, comp);
   } else {
     SimulatedGyro<double> stub;
-    GyroComponent<double> comp(stub);
+    LocalFlightComputer<double> comp(stub);
     configure_both<double>(s, stub, comp);
   }
   check_run_limits(s);

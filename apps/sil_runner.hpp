@@ -11,7 +11,9 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -19,6 +21,7 @@
 
 #include "csv_writer.hpp"
 #include "gyro/status.hpp"
+#include "pil_options.hpp"
 #include "scenario.hpp"
 
 namespace gyro::sil {
@@ -61,6 +64,11 @@ struct TickRecord {
 class TickObserver {
  public:
   virtual ~TickObserver() = default;
+  // The flight computer's own columns (a processor in the loop's pil_*), after the standard
+  // ones: their names, and what writes this tick's cells. Given before on_start(); the
+  // observer that writes the CSV appends them, others ignore them.
+  virtual void set_extra_columns(std::span<const std::string_view> /*names*/,
+                                 std::function<void(CsvWriter&)> /*write*/) {}
   // Once, after both sides were configured and before tick 0.
   virtual void on_start() {}
   virtual void on_tick(const TickRecord& r) = 0;
@@ -83,12 +91,15 @@ class CsvObserver final : public TickObserver {
  public:
   explicit CsvObserver(CsvWriter& csv, std::uint64_t max_bytes = std::numeric_limits<std::uint64_t>::max()) noexcept
       : csv_(csv), max_bytes_(max_bytes) {}
+  void set_extra_columns(std::span<const std::string_view> names, std::function<void(CsvWriter&)> write) override;
   void on_start() override;
   void on_tick(const TickRecord& r) override;
 
  private:
   CsvWriter& csv_;
   std::uint64_t max_bytes_;
+  std::span<const std::string_view> extra_names_;
+  std::function<void(CsvWriter&)> write_extras_;
 };
 
 // The software failed at run time (not the scenario's fault): the stub or the component
@@ -105,6 +116,9 @@ struct RunOptions {
   // The run stops (RunError) once the CSV passes this many bytes: a guard behind the check
   // of csv_size_bound() up front, which should always have refused such a run first.
   std::uint64_t max_csv_bytes{std::numeric_limits<std::uint64_t>::max()};
+  // Processor in the loop: the component runs on an emulated target over a serial line
+  // (pil_flight.hpp) instead of in process; the CSV gains the pil_* columns.
+  std::optional<PilOptions> pil;
 };
 
 struct RunSummary {
@@ -119,6 +133,7 @@ struct RunSummary {
   std::uint64_t gimbal_stop_hits{0}; // ticks in which the stub's gimbal hit its stop
   double max_abs_gimbal_rad{0};      // largest true gimbal angle, either axis
   double wall_s{0};                  // wall-clock time of the loop (not in the CSV)
+  std::optional<PilSummary> pil;     // a processor-in-the-loop run's timing and link figures
 };
 
 // Checks the scenario in its precision: the range of its numbers, then configures a stub and a

@@ -1,14 +1,16 @@
-// The body's motion in a scenario: its attitude, pitch/yaw rates and accelerations tick by
-// tick. The truth environment of the software-in-the-loop run, so it is computed in double
-// whatever scalar the component and the stub run in.
+// The body's motion in a scenario: its attitude, rates and specific force tick by tick. The
+// truth environment of the software-in-the-loop run, so it is computed in double whatever
+// scalar the component and the stub run in.
 //
-// Profile: a start attitude (roll, pitch, yaw Euler angles, 3-2-1), constant body rates q
-// (pitch, about body y) and r (yaw, about body z), an optional sinusoidal weave on top,
+// Profile: a start attitude (roll, pitch, yaw Euler angles, 3-2-1), constant body rates p
+// (roll, about body x), q (pitch, about body y) and r (yaw, about body z), an optional
+// sinusoidal weave on q and r,
 //   q(t) = q0 + Aq sin(2 pi f t),   r(t) = r0 + Ar sin(2 pi f t + phase),
-// and constant lateral (body y) and normal (body z) accelerations.
+// and a constant specific force (body axes; the report's plant uses its lateral y and normal
+// z components).
 //
 // Per tick the body turns by an exact rotation (no first-order matrices): with the rotation
-// vector composition the body's angular velocity (0, q_mean, r_mean) is held over the tick,
+// vector composition the body's angular velocity (p, q_mean, r_mean) is held over the tick,
 // q_mean and r_mean being the exact means of q(t) and r(t) over the tick (the rotation is
 // then exact for constant rates; with a weave, the second-order coning term within one tick
 // is neglected). The pitch-then-yaw composition reproduces the report's driver GYMAIN
@@ -40,10 +42,10 @@ struct WeaveProfile {
 
 struct BodyProfile {
   std::array<double, 3> attitude_rad{0, 0, 0};  // (roll, pitch, yaw) at t = 0, 3-2-1 Euler
-  std::array<double, 2> rate_rad_s{0, 0};       // constant (q, r)
+  std::array<double, 3> rate_rad_s{0, 0, 0};    // constant (p, q, r)
   RotationComposition composition{RotationComposition::kRotationVector};
   WeaveProfile weave{};
-  std::array<double, 2> accel{0, 0};            // (lateral y, normal z), units of gravity
+  std::array<double, 3> specific_force{0, 0, 0};  // body (x, y, z), units of gyro.gravity
 };
 
 inline constexpr double kTwoPi = 6.283185307179586476925286766559;
@@ -72,18 +74,18 @@ class BodyMotion {
   // Below this phase advance per tick, the weave's mean over a tick is its midpoint value.
   static constexpr double kShortSpanRad = 1e-5;
 
-  // Body (q, r) at time t.
-  [[nodiscard]] Eigen::Vector2d rate_at(double t) const {
+  // Body (p, q, r) at time t.
+  [[nodiscard]] Eigen::Vector3d rate_at(double t) const {
     const WeaveProfile& w = profile_.weave;
     const double a = kTwoPi * w.frequency_hz * t;
-    return Eigen::Vector2d(profile_.rate_rad_s[0] + w.pitch_amplitude_rad_s * std::sin(a),
-                           profile_.rate_rad_s[1] + w.yaw_amplitude_rad_s * std::sin(a + w.yaw_phase_rad));
+    return Eigen::Vector3d(profile_.rate_rad_s[0], profile_.rate_rad_s[1] + w.pitch_amplitude_rad_s * std::sin(a),
+                           profile_.rate_rad_s[2] + w.yaw_amplitude_rad_s * std::sin(a + w.yaw_phase_rad));
   }
 
-  // Exact mean of (q, r) over [t0, t1].
-  [[nodiscard]] Eigen::Vector2d mean_rate(double t0, double t1) const {
+  // Exact mean of (p, q, r) over [t0, t1].
+  [[nodiscard]] Eigen::Vector3d mean_rate(double t0, double t1) const {
     const WeaveProfile& w = profile_.weave;
-    Eigen::Vector2d m(profile_.rate_rad_s[0], profile_.rate_rad_s[1]);
+    Eigen::Vector3d m(profile_.rate_rad_s[0], profile_.rate_rad_s[1], profile_.rate_rad_s[2]);
     const double omega = kTwoPi * w.frequency_hz;
     if (omega > 0 && (w.pitch_amplitude_rad_s != 0 || w.yaw_amplitude_rad_s != 0)) {
       const double span = omega * (t1 - t0);
@@ -92,25 +94,25 @@ class BodyMotion {
         // The closed form cancels (and is 0/0 once span underflows): the midpoint value is
         // the mean to span^2/24 relative, below 4.2e-12 here.
         const double mid = 0.5 * (a0 + a1);
-        m(0) += w.pitch_amplitude_rad_s * std::sin(mid);
-        m(1) += w.yaw_amplitude_rad_s * std::sin(mid + w.yaw_phase_rad);
+        m(1) += w.pitch_amplitude_rad_s * std::sin(mid);
+        m(2) += w.yaw_amplitude_rad_s * std::sin(mid + w.yaw_phase_rad);
       } else {
-        m(0) += w.pitch_amplitude_rad_s * (std::cos(a0) - std::cos(a1)) / span;
-        m(1) += w.yaw_amplitude_rad_s * (std::cos(a0 + w.yaw_phase_rad) - std::cos(a1 + w.yaw_phase_rad)) / span;
+        m(1) += w.pitch_amplitude_rad_s * (std::cos(a0) - std::cos(a1)) / span;
+        m(2) += w.yaw_amplitude_rad_s * (std::cos(a0 + w.yaw_phase_rad) - std::cos(a1 + w.yaw_phase_rad)) / span;
       }
     }
     return m;
   }
 
-  // The passive rotation of one tick, R_new = step * R_old, for mean rates `w` over dt.
-  [[nodiscard]] static Eigen::Matrix3d tick_rotation(const Eigen::Vector2d& w, double dt,
+  // The passive rotation of one tick, R_new = step * R_old, for mean rates `omega` (p, q, r)
+  // over dt (the report's pitch-then-yaw composition has no roll).
+  [[nodiscard]] static Eigen::Matrix3d tick_rotation(const Eigen::Vector3d& omega, double dt,
                                                      RotationComposition composition) {
     if (composition == RotationComposition::kPitchThenYaw) {
       Eigen::Matrix3d r = Eigen::Matrix3d::Zero();
-      r.noalias() = frame_rotation_z(w(1) * dt) * frame_rotation_y(w(0) * dt);
+      r.noalias() = frame_rotation_z(omega(2) * dt) * frame_rotation_y(omega(1) * dt);
       return r;
     }
-    const Eigen::Vector3d omega(0.0, w(0), w(1));
     const double angle = omega.norm() * dt;
     if (!(angle > 0)) return Eigen::Matrix3d::Identity();
     // The body turns by +angle about omega; body components of fixed vectors turn by -angle.
@@ -133,8 +135,10 @@ class BodyMotion {
   [[nodiscard]] std::uint64_t tick() const { return tick_; }
   [[nodiscard]] double time_s() const { return static_cast<double>(tick_) * tick_s_; }
   [[nodiscard]] const Eigen::Matrix3d& R_earth_to_body() const { return R_earth_to_body_; }
-  [[nodiscard]] Eigen::Vector2d rate_rad_s() const { return rate_at(time_s()); }
-  [[nodiscard]] Eigen::Vector2d accel() const { return Eigen::Vector2d(profile_.accel[0], profile_.accel[1]); }
+  [[nodiscard]] Eigen::Vector3d rate_rad_s() const { return rate_at(time_s()); }
+  [[nodiscard]] Eigen::Vector3d specific_force() const {
+    return Eigen::Vector3d(profile_.specific_force[0], profile_.specific_force[1], profile_.specific_force[2]);
+  }
 
  private:
   BodyProfile profile_;

@@ -238,17 +238,18 @@ class Reader {
     return os.str();
   }
 
+  [[nodiscard]] static std::string describe(const json& v) {
+    if (v.is_string() || v.is_boolean() || v.is_null()) return std::string(v.type_name()) + " " + v.dump();
+    if (v.is_number()) return std::string(v.type_name()) + " " + v.dump();
+    return v.type_name();
+  }
+
  private:
   [[nodiscard]] double as_number(const json& v, const std::string& path) const {
     if (!v.is_number()) fail_at(path, std::string("expected a number, got ") + describe(v));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail_at(path, "not a finite number");
     return d;
-  }
-  [[nodiscard]] static std::string describe(const json& v) {
-    if (v.is_string() || v.is_boolean() || v.is_null()) return std::string(v.type_name()) + " " + v.dump();
-    if (v.is_number()) return std::string(v.type_name()) + " " + v.dump();
-    return v.type_name();
   }
 
   const std::string& file_;
@@ -358,6 +359,57 @@ void parse_faults(const Reader& g, const RunSpec& run, Scenario& s) {
   s.fault_count = list.size();
 }
 
+constexpr std::array<std::string_view, 19> kGimbalKeys = {
+    "rotor_transverse_inertia", "inner_gimbal_inertia", "outer_gimbal_inertia", "inner_friction",
+    "outer_friction", "inner_coulomb_torque", "outer_coulomb_torque", "coulomb_rate_scale_rad_s",
+    "spin_drive", "motor_torque_limit", "spin_servo_bandwidth_rad_s", "spin_down_time_s",
+    "mass_unbalance", "stop_restitution", "torque_axes", "max_body_rate_rad_s", "max_torque",
+    "max_specific_force", "max_substep_phase_rad"};
+
+// The gimbal plant: the rotor's spin inertia, spin and friction from gyro.rotor, its stop
+// from gyro.limits.gimbal_stop_rad, the rest from gyro.gimbal (docs/scenarios.md).
+void parse_gimbal(const Reader& r, SimulatedGyroConfig<double>& c) {
+  GimbalPlantConfig<double>& g = c.gimbal;
+  g.spin_inertia = c.gyro.spin_inertia;
+  g.max_spin_hz = c.spin_hz;
+  g.stop_cone_rad = c.gimbal_stop_rad;
+  g.rotor_transverse_inertia = r.number("rotor_transverse_inertia");
+  const std::array<double, 3> inner = r.numbers<3>("inner_gimbal_inertia");
+  const std::array<double, 3> outer = r.numbers<3>("outer_gimbal_inertia");
+  g.inner_gimbal_inertia = Eigen::Vector3d(inner[0], inner[1], inner[2]);
+  g.outer_gimbal_inertia = Eigen::Vector3d(outer[0], outer[1], outer[2]);
+  g.inner_friction = r.number("inner_friction", c.gyro.friction);
+  g.outer_friction = r.number("outer_friction", c.gyro.friction);
+  g.inner_coulomb_torque = r.number("inner_coulomb_torque", 0);
+  g.outer_coulomb_torque = r.number("outer_coulomb_torque", 0);
+  g.coulomb_rate_scale_rad_s = r.number("coulomb_rate_scale_rad_s", g.coulomb_rate_scale_rad_s);
+  const std::string drive = r.text("spin_drive", "motor");
+  if (drive == "motor") {
+    g.spin_drive = SpinDrive::kMotor;
+  } else if (drive == "free") {
+    g.spin_drive = SpinDrive::kFree;
+  } else {
+    r.fail("spin_drive", "expected \"motor\" or \"free\", got \"" + drive + "\"");
+  }
+  g.motor_torque_limit = r.number("motor_torque_limit", 0);
+  g.spin_servo_bandwidth_rad_s = r.number("spin_servo_bandwidth_rad_s", 0);
+  g.spin_down_time_s = r.number("spin_down_time_s", 0);
+  g.mass_unbalance = r.number("mass_unbalance", 0);
+  g.stop_restitution = r.number("stop_restitution", 0);
+  const std::string axes = r.text("torque_axes", "gimbal");
+  if (axes == "gimbal") {
+    g.torque_axes = TorqueAxes::kGimbal;
+  } else if (axes == "gyro") {
+    g.torque_axes = TorqueAxes::kGyro;
+  } else {
+    r.fail("torque_axes", "expected \"gimbal\" or \"gyro\", got \"" + axes + "\"");
+  }
+  g.max_body_rate_rad_s = r.number("max_body_rate_rad_s", 100);
+  g.max_torque = r.number("max_torque", 1e3);
+  g.max_specific_force = r.number("max_specific_force", 1e4);
+  g.max_substep_phase_rad = r.number("max_substep_phase_rad", g.max_substep_phase_rad);
+}
+
 void parse_gyro(const Reader& g, const RunSpec& run, Scenario& s) {
   SimulatedGyroConfig<double>& c = s.gyro;
   c.tick_s = run.tick_s;
@@ -385,6 +437,28 @@ void parse_gyro(const Reader& g, const RunSpec& run, Scenario& s) {
     c.gyro.small_angle_limit_rad = r.number("small_angle_limit_rad", 0.01);
   }
   c.gyro.gravity = g.number("gravity");
+  const std::string plant = g.text("plant", "gimbal");
+  if (plant == "gimbal") {
+    c.plant = PlantKind::kGimbal;
+    if (!g.has("gimbal")) {
+      g.fail("gimbal", "missing required field for plant \"gimbal\" (the default): the device's inertias and "
+                       "bearings; or set gyro.plant to \"report\" for the report's linear model");
+    }
+    parse_gimbal(g.object("gimbal", kGimbalKeys), c);
+    if (g.has("errors")) {
+      g.fail("errors", "the report's error sources belong to plant \"report\"; the gimbal plant has its own "
+                       "(gimbal.mass_unbalance, gimbal.inner_coulomb_torque, ...)");
+    }
+    if (c.spin_down_time_constant_s != 0) {
+      g.fail("rotor", "spin_down_time_constant_s belongs to plant \"report\"; the gimbal plant runs down with "
+                      "gimbal.spin_drive \"free\" and gimbal.spin_down_time_s");
+    }
+  } else if (plant == "report") {
+    c.plant = PlantKind::kReport;
+    if (g.has("gimbal")) g.fail("gimbal", "only for plant \"gimbal\" (this scenario's plant is \"report\")");
+  } else {
+    g.fail("plant", "expected \"gimbal\" or \"report\", got \"" + plant + "\"");
+  }
   if (g.has("errors")) {
     const Reader e = g.object("errors", {"pitch", "yaw"});
     if (e.has("pitch")) parse_axis_errors(e.object("pitch", kAxisErrorKeys), c.gyro.errors.pitch);
@@ -442,10 +516,19 @@ void parse_component(const Reader& r, const RunSpec& run, GyroComponentConfig<do
   c.max_body_rate_rad_s = r.number("max_body_rate_rad_s", defaults.max_body_rate_rad_s);
 }
 
-BodyProfile parse_body(const Reader& r) {
+BodyProfile parse_body(const Reader& r, Scenario& s) {
   BodyProfile b;
   b.attitude_rad = r.numbers<3>("attitude_rad", {0, 0, 0});
-  b.rate_rad_s = r.numbers<2>("rate_rad_s");
+  const json& rate = r.required("rate_rad_s");
+  if (rate.is_array() && rate.size() == 2) {  // (q, r): no roll
+    const std::array<double, 2> qr = r.numbers<2>("rate_rad_s");
+    b.rate_rad_s = {0, qr[0], qr[1]};
+    s.body_rate_pitch_yaw_only = true;
+  } else if (rate.is_array() && rate.size() == 3) {
+    b.rate_rad_s = r.numbers<3>("rate_rad_s");
+  } else {
+    r.fail("rate_rad_s", "expected an array of 3 numbers (p, q, r) or 2 (q, r), got " + Reader::describe(rate));
+  }
   const std::string comp = r.text("composition", "rotation_vector");
   if (comp == "rotation_vector") {
     b.composition = RotationComposition::kRotationVector;
@@ -461,7 +544,19 @@ BodyProfile parse_body(const Reader& r) {
     b.weave.frequency_hz = w.positive("frequency_hz");
     b.weave.yaw_phase_rad = w.number("yaw_phase_rad", 0);
   }
-  b.accel = r.numbers<2>("accel", {0, 0});
+  if (r.has("accel") && r.has("specific_force")) {
+    r.fail("accel", "give either \"accel\" (lateral y, normal z) or \"specific_force\" (x, y, z), not both");
+  }
+  if (r.has("accel")) {
+    const std::array<double, 2> a = r.numbers<2>("accel");
+    b.specific_force = {0, a[0], a[1]};
+    s.body_accel_lateral_normal = true;
+  } else {
+    b.specific_force = r.numbers<3>("specific_force", {0, 0, 0});
+  }
+  if (b.composition == RotationComposition::kPitchThenYaw && b.rate_rad_s[0] != 0) {
+    r.fail("rate_rad_s", "the pitch_then_yaw composition (the report's driver) has no roll: p must be 0");
+  }
   return b;
 }
 
@@ -614,7 +709,8 @@ Scenario parse_scenario(std::string_view json_text, const std::string& file) {
   const Reader top(s.file, doc, "", {"description", "run", "gyro", "component", "body", "guidance"});
   s.description = top.text("description", "");
   s.run = parse_run(top.object("run", {"tick_s", "rate_hz", "ticks", "duration_s", "precision"}));
-  parse_gyro(top.object("gyro", {"rotor", "limits", "gravity", "errors", "pickoff", "torquer", "seed", "faults"}),
+  parse_gyro(top.object("gyro", {"plant", "rotor", "limits", "gravity", "errors", "gimbal", "pickoff", "torquer",
+                                 "seed", "faults"}),
              s.run, s);
   parse_component(top.object("component",
                              {"pitch_inertia", "yaw_inertia", "spin_inertia", "friction", "nominal_spin_hz",
@@ -627,7 +723,8 @@ Scenario parse_scenario(std::string_view json_text, const std::string& file) {
                               "uncage_settle_ticks", "max_tick_gap", "input_persistence_ticks",
                               "max_body_rate_rad_s"}),
                   s.run, s.component);
-  s.body = parse_body(top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel"}));
+  s.body = parse_body(
+      top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force"}), s);
   s.guidance = parse_guidance(top.object("guidance", {"schedule"}), s.run, s.file);
   record_values(doc, "", s.values);
   return s;
@@ -675,6 +772,16 @@ Scenario read_scenario(const std::filesystem::path& path) {
   return parse_scenario(read_bounded(name), name);
 }
 
+std::string body_rate_field(const Scenario& s, int axis) {
+  if (s.body_rate_pitch_yaw_only) return axis == 0 ? "body.rate_rad_s" : "body.rate_rad_s[" + std::to_string(axis - 1) + "]";
+  return "body.rate_rad_s[" + std::to_string(axis) + "]";
+}
+
+std::string body_force_field(const Scenario& s, int axis) {
+  if (s.body_accel_lateral_normal) return axis == 0 ? "body.accel" : "body.accel[" + std::to_string(axis - 1) + "]";
+  return "body.specific_force[" + std::to_string(axis) + "]";
+}
+
 std::string component_field_path(const Scenario& s, std::string_view field) {
   if (field == "tick_s") return s.run.tick_field;
   return join("component", field);
@@ -695,6 +802,15 @@ std::string gyro_field_path(const Scenario& s, std::string_view field) {
       {"small_angle_limit_rad", "limits"},
   }};
   if (field == "tick_s") return s.run.tick_field;
+  if (s.gyro.plant == PlantKind::kGimbal) {
+    // The gimbal plant's fields: three come from rotor and limits, the rest from gimbal.
+    if (field == "spin_inertia") return "gyro.rotor.spin_inertia";
+    if (field == "max_spin_hz") return "gyro.rotor.spin_hz";
+    if (field == "stop_cone_rad") return "gyro.limits.gimbal_stop_rad";
+    for (std::string_view k : kGimbalKeys) {
+      if (k == field) return join("gyro.gimbal", field);
+    }
+  }
   for (const Section& sec : kSections) {
     if (sec.field == field) return join(join("gyro", sec.section), field);
   }

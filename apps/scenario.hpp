@@ -82,6 +82,8 @@ struct Scenario {
   SimulatedGyroConfig<double> gyro{};       // tick_s = run.tick_s; faults in file order
   std::size_t fault_count{0};
   BodyProfile body{};
+  bool body_rate_pitch_yaw_only{false};  // body.rate_rad_s written as (q, r)
+  bool body_accel_lateral_normal{false};  // body.accel written (lateral y, normal z)
   std::vector<GuidanceEvent> guidance;      // sorted by time
   // Every number, string and boolean of the file as written, by JSON path (for messages
   // about a value the component or the stub refused).
@@ -96,6 +98,11 @@ struct Scenario {
 // than kMaxScenarioBytes is a ScenarioError with field "(file)"; reading is bounded even for
 // /dev/zero or a pipe.
 [[nodiscard]] Scenario read_scenario(const std::filesystem::path& path);
+
+// The JSON path of the body rate about body axis 0 (p), 1 (q) or 2 (r), and of the specific
+// force's component on axis 0 (x), 1 (y) or 2 (z), as the scenario wrote them.
+[[nodiscard]] std::string body_rate_field(const Scenario& s, int axis);
+[[nodiscard]] std::string body_force_field(const Scenario& s, int axis);
 
 // The JSON path of a field the component's configure() named ("max_torque" ->
 // "component.max_torque"), and of one the stub's configure() named ("pickoff.lsb_rad" ->

@@ -85,24 +85,40 @@ void float_range(const Scenario& s) {
 // ---------------------------------------------------------------------------------------
 // The body's motion.
 
+// The fields the body's rates come from: q, r, their weave amplitudes, p.
+std::vector<Factor> body_rate_factors(const Scenario& s) {
+  const BodyProfile& b = s.body;
+  return {
+      {b.rate_rad_s[1], body_rate_field(s, 1)},
+      {b.rate_rad_s[2], body_rate_field(s, 2)},
+      {b.weave.pitch_amplitude_rad_s, "body.weave.pitch_amplitude_rad_s"},
+      {b.weave.yaw_amplitude_rad_s, "body.weave.yaw_amplitude_rad_s"},
+      {b.rate_rad_s[0], body_rate_field(s, 0)},
+  };
+}
+
+// The largest |(p, q, r)| the body reaches (constant rates plus the weave at its crest).
+double peak_body_rate(const std::vector<Factor>& f) {
+  const double q = std::abs(f[0].value) + std::abs(f[2].value);
+  const double r = std::abs(f[1].value) + std::abs(f[3].value);
+  return std::hypot(std::abs(f[4].value), std::hypot(q, r));
+}
+
+const std::string& largest_field(const std::vector<Factor>& factors) {
+  const Factor* largest = &factors.front();
+  for (const Factor& f : factors) {
+    if (std::abs(f.value) > std::abs(largest->value)) largest = &f;
+  }
+  return largest->field;
+}
+
 void check_body(const Scenario& s) {
   const BodyProfile& b = s.body;
   const double tick = s.run.tick_s;
-  const std::vector<Factor> peaks = {
-      {b.rate_rad_s[0], "body.rate_rad_s[0]"},
-      {b.rate_rad_s[1], "body.rate_rad_s[1]"},
-      {b.weave.pitch_amplitude_rad_s, "body.weave.pitch_amplitude_rad_s"},
-      {b.weave.yaw_amplitude_rad_s, "body.weave.yaw_amplitude_rad_s"},
-  };
-  const double q = std::abs(peaks[0].value) + std::abs(peaks[2].value);
-  const double r = std::abs(peaks[1].value) + std::abs(peaks[3].value);
-  const double turn = std::hypot(q, r) * tick;
+  const std::vector<Factor> peaks = body_rate_factors(s);
+  const double turn = peak_body_rate(peaks) * tick;
   if (!(turn <= kTwoPi / 2)) {
-    const Factor* largest = &peaks.front();
-    for (const Factor& p : peaks) {
-      if (std::abs(p.value) > std::abs(largest->value)) largest = &p;
-    }
-    throw ScenarioError(s.file, largest->field,
+    throw ScenarioError(s.file, largest_field(peaks),
                         "the body would turn by " + format(turn) +
                             " rad in one tick at its peak rates, more than pi: the tick cannot represent it "
                             "(aliased), give a shorter tick or lower rates");
@@ -159,10 +175,10 @@ std::vector<Term> rotor_torque_terms(const Scenario& s, int axis) {
                                                                                              : "gyro.rotor.spin_inertia";
   const Factor h{kTwoPi * s.gyro.spin_hz * m.spin_inertia, spin_field};
   const Factor largest_angle{kTwoPi / 2, ""};
-  const double accel = s.body.accel[static_cast<std::size_t>(drifted)];
+  const double accel = s.body.specific_force[static_cast<std::size_t>(drifted) + 1];
   const double g_excess = std::abs(accel) > m.gravity ? std::abs(accel) / m.gravity - 1.0 : 0.0;
   const std::string accel_field = extremeness(accel) >= extremeness(m.gravity)
-                                      ? "body.accel[" + std::to_string(drifted) + "]"
+                                      ? body_force_field(s, drifted + 1)
                                       : std::string("gyro.gravity");
   terms.push_back(product({h, {e.static_drift_rad_s, err + "static_drift_rad_s"}}));
   terms.push_back(product({h, {e.in_plane_erection_1_s, err + "in_plane_erection_1_s"}, largest_angle}));
@@ -177,9 +193,9 @@ void check_rotor_torque(const Scenario& s) {
   // The g-sensitive drift's factor accel / gravity is computed on its own first.
   const GyroModelConfig<double>& m = s.gyro.gyro;
   for (std::size_t i = 0; i < 2; ++i) {
-    const double accel = s.body.accel[i];
+    const double accel = s.body.specific_force[i + 1];
     if (!(std::abs(accel) / m.gravity <= static_cast<double>(std::numeric_limits<T>::max()))) {
-      const std::string accel_field = "body.accel[" + std::to_string(i) + "]";
+      const std::string accel_field = body_force_field(s, static_cast<int>(i) + 1);
       throw ScenarioError(s.file, extremeness(accel) >= extremeness(m.gravity) ? accel_field : "gyro.gravity",
                           "the acceleration in units of gyro.gravity is not representable in " +
                               std::string(precision_name(s)));
@@ -221,6 +237,43 @@ void check_rotor_torque(const Scenario& s) {
   }
 }
 
+// The gimbal plant's envelope (GimbalPlantConfig's max_*): outside it the plant refuses a
+// step, and the run would stop on a tick.
+void check_gimbal_envelope(const Scenario& s) {
+  if (s.gyro.plant != PlantKind::kGimbal) return;
+  const GimbalPlantConfig<double>& g = s.gyro.gimbal;
+  const std::vector<Factor> rates = body_rate_factors(s);
+  if (!(peak_body_rate(rates) <= g.max_body_rate_rad_s)) {
+    throw ScenarioError(s.file, largest_field(rates),
+                        "the body's peak rate |(p, q, r)| of " + format(peak_body_rate(rates)) +
+                            " rad/s is more than gyro.gimbal.max_body_rate_rad_s (" +
+                            format(g.max_body_rate_rad_s) + ")");
+  }
+  const std::vector<Factor> force = {{s.body.specific_force[0], body_force_field(s, 0)},
+                                     {s.body.specific_force[1], body_force_field(s, 1)},
+                                     {s.body.specific_force[2], body_force_field(s, 2)}};
+  const double f = std::hypot(force[0].value, std::hypot(force[1].value, force[2].value));
+  if (!(f <= g.max_specific_force)) {
+    throw ScenarioError(s.file, largest_field(force),
+                        "the body's specific force of " + format(f) + " is more than "
+                            "gyro.gimbal.max_specific_force (" + format(g.max_specific_force) + ")");
+  }
+  const Term unbalance = product({{g.mass_unbalance, "gyro.gimbal.mass_unbalance"}, {f, largest_field(force)}});
+  if (!(unbalance.value <= g.max_torque)) {
+    refuse(s, {unbalance}, "the mass unbalance's torque at the body's specific force, " + format(unbalance.value) +
+                               ", is more than gyro.gimbal.max_torque (" + format(g.max_torque) + ")");
+  }
+  for (int axis = 0; axis < 2; ++axis) {
+    const std::vector<Term> terms = torquer_terms(s, axis);
+    for (const Term& t : terms) {
+      if (!(t.value <= g.max_torque)) {
+        refuse(s, terms, "the torquer can put " + format(t.value) + " on a gimbal axis, more than "
+                             "gyro.gimbal.max_torque (" + format(g.max_torque) + ")");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void check_precision_range(const Scenario& s) {
@@ -229,6 +282,7 @@ void check_precision_range(const Scenario& s) {
 
 void check_run_limits(const Scenario& s) {
   check_body(s);
+  check_gimbal_envelope(s);
   if (s.run.precision == Precision::kFloat) {
     check_rotor_torque<float>(s);
   } else {

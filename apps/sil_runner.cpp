@@ -284,7 +284,15 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
   GuidancePlayer guidance(s.guidance);
   Progress progress(options, s.run.ticks);
 
-  const Status started = stub.start(body.R_earth_to_body().cast<T>(), v2<T>(body.rate_rad_s()));
+  // The body's truth at the current tick, in the run's scalar.
+  const auto sample = [&body] {
+    BodySample<T> b;
+    b.R_earth_to_body = body.R_earth_to_body().cast<T>();
+    b.rate_rad_s = body.rate_rad_s().cast<T>();
+    b.specific_force = body.specific_force().cast<T>();
+    return b;
+  };
+  const Status started = stub.start(sample());
   if (started != Status::kOk) throw RunError(std::string("SimulatedGyro::start refused: ") + to_string(started));
   const Status active = comp.activate();
   if (active != Status::kOk) throw RunError(std::string("GyroComponent::activate refused: ") + to_string(active));
@@ -293,7 +301,7 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
   for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
     if (k > 0) {
       body.advance();
-      const Status st = stub.advance(k, body.R_earth_to_body().cast<T>(), v2<T>(body.accel()));
+      const Status st = stub.advance(k, sample());
       if (st != Status::kOk) {
         throw RunError("tick " + std::to_string(k) + ": SimulatedGyro::advance refused: " + to_string(st));
       }
@@ -303,7 +311,7 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     in.slew_rate_cmd_rad_s = v2<T>(guidance.slew());
     in.nav_valid = guidance.nav_valid();
     in.R_earth_to_body = body.R_earth_to_body().cast<T>();
-    in.body_rate_rad_s = Vector3<T>(T(0), static_cast<T>(body.rate_rad_s()(0)), static_cast<T>(body.rate_rad_s()(1)));
+    in.body_rate_rad_s = body.rate_rad_s().cast<T>();
     const Status step = comp.step(k, in);
     if (step != Status::kOk && step != Status::kInputIgnored) ++sum.refused_steps;
 

@@ -2,7 +2,9 @@
 # Builds and tests every cross target, one command each (a CMake workflow preset:
 # configure, build, test):
 #   cortex-m4f, cortex-m7   bare-metal firmware images under qemu-system-arm (MPS2)
-#   aarch64, armhf, ppc, riscv64   the GoogleTest suite under qemu-user
+#   aarch64, armhf, ppc, riscv64   the GoogleTest suite of the flight libraries under
+#                                  qemu-user (preset cross-linux: the host tools and their
+#                                  tests are built and run on the host and under sanitizers)
 # then prints the bare-metal footprint table (scripts/footprint.sh) and each target's time.
 #
 #   scripts/ci-cross.sh [preset...]        (default: all six)

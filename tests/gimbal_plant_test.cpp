@@ -89,6 +89,10 @@ TEST(GimbalPlantConfig, GivenEachBadFieldThenRefusedNamingIt) {
       {"mass_unbalance", Status::kNonFiniteInput, [](Config& c) { c.mass_unbalance = kInf; }},
       {"stop_cone_rad", Status::kOutOfRange, [](Config& c) { c.stop_cone_rad = 0.0; }},
       {"stop_cone_rad", Status::kOutOfRange, [](Config& c) { c.stop_cone_rad = 85.0 * kDeg; }},  // gimbal lock
+      {"stop_cone_rad", Status::kOutOfRange, [](Config& c) { c.stop_cone_rad = 0.9e-3; }},  // below a milliradian
+      {"rotor_transverse_inertia", Status::kOutOfRange, [](Config& c) { c.rotor_transverse_inertia = 3.1e1; }},
+      {"inner_gimbal_inertia", Status::kOutOfRange, [](Config& c) { c.inner_gimbal_inertia = V3(20.0, 40.0, 31.0); }},
+      {"outer_gimbal_inertia", Status::kOutOfRange, [](Config& c) { c.outer_gimbal_inertia = V3(62.0, 31.0, 31.0); }},
       {"stop_restitution", Status::kOutOfRange, [](Config& c) { c.stop_restitution = 1.5; }},
       {"stop_restitution", Status::kOutOfRange, [](Config& c) { c.stop_restitution = -0.1; }},
       {"spin_drive", Status::kOutOfRange, [](Config& c) { c.spin_drive = static_cast<SpinDrive>(7); }},

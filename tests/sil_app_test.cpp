@@ -179,8 +179,9 @@ TEST(SilScenarios, GivenTheReportSampleThenItIsTheReportsRun) {
   EXPECT_EQ(s.gyro.spin_hz, 100.0);
   EXPECT_EQ(s.gyro.gyro.gimbal_cone_limit_rad, 0.4363323);
   EXPECT_EQ(s.gyro.gyro.gravity, 32.1725);
-  EXPECT_DOUBLE_EQ(s.body.rate_rad_s[0], 2.3 * 0.1745329);
-  EXPECT_DOUBLE_EQ(s.body.rate_rad_s[1], 1.8 * 0.1745329);
+  EXPECT_EQ(s.body.rate_rad_s[0], 0.0);  // (q, r) given: no roll
+  EXPECT_DOUBLE_EQ(s.body.rate_rad_s[1], 2.3 * 0.1745329);
+  EXPECT_DOUBLE_EQ(s.body.rate_rad_s[2], 1.8 * 0.1745329);
   ASSERT_FALSE(s.guidance.empty());
   ASSERT_TRUE(s.guidance.front().slew_rate_rad_s.has_value());
   EXPECT_EQ((*s.guidance.front().slew_rate_rad_s)(0), -0.19);
@@ -356,6 +357,15 @@ TEST(SilBadScenarios, GivenEachMalformedScenarioThenItIsRefusedNamingFileFieldAn
       {"overflow_body_rate.json", {"body.rate_rad_s[0]", "more than pi"}},
       {"overflow_float_slew.json", {"guidance.schedule[0].slew_rate_rad_s[0]", "not representable in float"}},
       {"weave_above_nyquist.json", {"body.weave.frequency_hz", "Nyquist"}},
+      // The plant: the gimbal plant (the default) needs its device and has no report error sources.
+      {"gimbal_missing_section.json", {"gyro.gimbal", "missing required field for plant \"gimbal\" (the default)"}},
+      {"gimbal_with_report_errors.json", {"gyro.errors", "belong to plant \"report\""}},
+      {"bad_plant.json", {"gyro.plant", "expected \"gimbal\" or \"report\", got \"gimbals\""}},
+      {"gimbal_negative_inertia.json", {"gyro.gimbal.outer_gimbal_inertia", "refused by SimulatedGyro::configure"}},
+      {"gimbal_roll_with_pitch_then_yaw.json", {"body.rate_rad_s", "has no roll: p must be 0"}},
+      {"gimbal_body_rate_beyond_plant.json", {"body.rate_rad_s[0]", "more than gyro.gimbal.max_body_rate_rad_s (100)"}},
+      {"gimbal_force_beyond_plant.json", {"body.specific_force[0]", "more than gyro.gimbal.max_specific_force"}},
+      {"gimbal_torque_beyond_plant.json", {"gyro.faults[0].magnitude", "more than gyro.gimbal.max_torque (1000)"}},
   };
   const std::vector<fs::path> files = json_files(kBad);
   ASSERT_EQ(files.size(), expected.size()) << "every file in tests/data/bad_scenarios needs an expectation";
@@ -449,13 +459,13 @@ double max_abs_diff(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) { return
 TEST(SilBodyMotion, GivenConstantRatesThenTheAttitudeAfterNTicksIsTheExactRotation) {
   BodyProfile p;
   p.attitude_rad = {0.1, -0.2, 0.3};
-  p.rate_rad_s = {0.4, -0.7};
+  p.rate_rad_s = {0.9, 0.4, -0.7};
   const double dt = 1e-3;
   BodyMotion m(p, dt);
   const Eigen::Matrix3d r0 = m.R_earth_to_body();
   const int n = 20000;
   for (int k = 0; k < n; ++k) m.advance();
-  const Eigen::Vector3d w(0, 0.4, -0.7);
+  const Eigen::Vector3d w(0.9, 0.4, -0.7);
   const Eigen::Matrix3d exact = Eigen::AngleAxisd(-w.norm() * n * dt, w.normalized()).toRotationMatrix() * r0;
   EXPECT_LT(max_abs_diff(m.R_earth_to_body(), exact), 1e-12);
   EXPECT_LT(orthonormality_error(m.R_earth_to_body()), 1e-14);
@@ -464,12 +474,12 @@ TEST(SilBodyMotion, GivenConstantRatesThenTheAttitudeAfterNTicksIsTheExactRotati
 
 TEST(SilBodyMotion, GivenPitchThenYawCompositionThenItIsTheReportsDriver) {
   BodyProfile p;
-  p.rate_rad_s = {2.3 * 0.1745329, 1.8 * 0.1745329};
+  p.rate_rad_s = {0.0, 2.3 * 0.1745329, 1.8 * 0.1745329};
   p.composition = RotationComposition::kPitchThenYaw;
   const double dt = 1.0 / 2828.0;
   BodyMotion m(p, dt);
   Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
-  const Eigen::Matrix3d turn = frame_rotation_z(p.rate_rad_s[1] * dt) * frame_rotation_y(p.rate_rad_s[0] * dt);
+  const Eigen::Matrix3d turn = frame_rotation_z(p.rate_rad_s[2] * dt) * frame_rotation_y(p.rate_rad_s[1] * dt);
   for (int k = 0; k < 801; ++k) {
     m.advance();
     r = turn * r;
@@ -492,27 +502,28 @@ TEST(SilBodyMotion, GivenAStartAttitudeThenItIsTheThreeTwoOneEulerRotation) {
 
 TEST(SilBodyMotion, GivenAWeaveThenTheTickMeanRateIsTheExactIntegral) {
   BodyProfile p;
-  p.rate_rad_s = {0.1, -0.2};
+  p.rate_rad_s = {0.7, 0.1, -0.2};
   p.weave = {0.3, 0.25, 3.0, 1.2};
   const BodyMotion m(p, 1e-3);
   const double t0 = 0.0137, t1 = 0.0437;
   // Simpson's rule on a fine grid as the reference.
   const int n = 2000;
-  Eigen::Vector2d integral = Eigen::Vector2d::Zero();
+  Eigen::Vector3d integral = Eigen::Vector3d::Zero();
   const double h = (t1 - t0) / n;
   for (int i = 0; i <= n; ++i) {
     const double wgt = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
     integral += wgt * m.rate_at(t0 + i * h);
   }
   integral *= h / 3.0 / (t1 - t0);
-  const Eigen::Vector2d mean = m.mean_rate(t0, t1);
+  const Eigen::Vector3d mean = m.mean_rate(t0, t1);
   EXPECT_NEAR(mean(0), integral(0), 1e-12);
   EXPECT_NEAR(mean(1), integral(1), 1e-12);
+  EXPECT_NEAR(mean(2), integral(2), 1e-12);
 }
 
 TEST(SilBodyMotion, GivenALongWeaveThenTheAttitudeStaysARotation) {
   BodyProfile p;
-  p.rate_rad_s = {0.5, 0.3};
+  p.rate_rad_s = {2.0, 0.5, 0.3};
   p.weave = {1.0, 1.0, 5.0, 1.5707963267948966};
   BodyMotion m(p, 1e-3);
   for (int k = 0; k < 200000; ++k) m.advance();
@@ -776,7 +787,7 @@ TEST(SilLimits, GivenAnyFieldAtAnExtremeValueThenEitherRefusedUpFrontOrTheFirstT
     base["gyro"]["faults"] = json::parse(R"([{"kind": "saturated_torquer", "start_s": 0, "axis": 0, "magnitude": 0.01},
         {"kind": "bias_jump", "start_s": 0, "axis": 1, "magnitude": 0.001},
         {"kind": "spin_motor_failure", "start_s": 0, "magnitude": 10}])");
-    base["gyro"]["errors"] = json::parse(R"({"pitch": {"static_drift_rad_s": 1e-5, "in_plane_erection_1_s": 1e-3,
+    if (base["gyro"]["plant"] == "report") base["gyro"]["errors"] = json::parse(R"({"pitch": {"static_drift_rad_s": 1e-5, "in_plane_erection_1_s": 1e-3,
         "cross_plane_erection_1_s": 1e-3, "g_sensitive_drift_rad_s": 1e-5, "torquer_cross_coupling": 0.01,
         "coulomb_friction_rad_s": 1e-5}})");
     std::vector<json::json_pointer> leaves;
@@ -813,19 +824,19 @@ TEST(SilLimits, GivenAnyFieldAtAnExtremeValueThenEitherRefusedUpFrontOrTheFirstT
 
 TEST(SilBodyMotion, GivenAWeaveSoSlowThatOneTicksPhaseUnderflowsThenTheMeanRateIsStillFinite) {
   BodyProfile p;
-  p.rate_rad_s = {0.1, 0.0};
+  p.rate_rad_s = {0.0, 0.1, 0.0};
   p.weave = {0.3, 0.3, 5e-324, 0.5};
   BodyMotion m(p, 1e-3);
-  const Eigen::Vector2d mean = m.mean_rate(0.0, 1e-3);
-  EXPECT_EQ(mean(0), 0.1);                        // sin(0) = 0: the weave has not started
-  EXPECT_DOUBLE_EQ(mean(1), 0.3 * std::sin(0.5));  // the phase alone
+  const Eigen::Vector3d mean = m.mean_rate(0.0, 1e-3);
+  EXPECT_EQ(mean(1), 0.1);                        // sin(0) = 0: the weave has not started
+  EXPECT_DOUBLE_EQ(mean(2), 0.3 * std::sin(0.5));  // the phase alone
   for (int k = 0; k < 10; ++k) m.advance();
   EXPECT_TRUE(m.R_earth_to_body().allFinite());
   // Just above the switch to the midpoint rule, the closed form agrees with it.
   p.weave.frequency_hz = 1.2e-5 / (kTwoPi * 1e-3);
   const BodyMotion n(p, 1e-3);
   const double t0 = 123.456;
-  EXPECT_NEAR(n.mean_rate(t0, t0 + 1e-3)(0), n.rate_at(t0 + 0.5e-3)(0), 1e-10);
+  EXPECT_NEAR(n.mean_rate(t0, t0 + 1e-3)(1), n.rate_at(t0 + 0.5e-3)(1), 1e-10);
 }
 
 }  // namespace

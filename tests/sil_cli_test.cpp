@@ -126,6 +126,18 @@ class Scratch {
   fs::path dir_;
 };
 
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
 struct Options {
   std::vector<std::pair<std::string, std::string>> env;
   std::optional<rlim_t> file_size_limit;  // RLIMIT_FSIZE: writes past it fail with EFBIG
@@ -172,7 +184,7 @@ Child start(const Scratch& s, const std::vector<std::string>& args, const Option
       const rlimit lim{*o.file_size_limit, *o.file_size_limit};
       ::setrlimit(RLIMIT_FSIZE, &lim);
     }
-    if (o.memory_limit) {
+    if (o.memory_limit && !kAddressSanitizer) {  // ASan reserves terabytes of shadow up front
       const rlimit lim{*o.memory_limit, *o.memory_limit};
       ::setrlimit(RLIMIT_AS, &lim);
     }

@@ -68,11 +68,11 @@ Dispersed disperse(const gyro::sil::Scenario& base, std::uint64_t seed) {
   g.torquer.scale_factor = Vec2(uniform(rng, 0.97, 1.03), uniform(rng, 0.97, 1.03));
   g.seed = seed * 2654435761u + 1u;
   g.faults = {};
-  d.body.rate_rad_s = {uniform(rng, -0.1, 0.1), uniform(rng, -0.1, 0.1)};
+  d.body.rate_rad_s = {0.0, uniform(rng, -0.1, 0.1), uniform(rng, -0.1, 0.1)};
   d.body.weave.pitch_amplitude_rad_s = uniform(rng, 0.0, 0.15);
   d.body.weave.yaw_amplitude_rad_s = uniform(rng, 0.0, 0.15);
   d.body.weave.frequency_hz = uniform(rng, 0.5, 3.0);
-  d.body.accel = {uniform(rng, -30.0, 30.0), uniform(rng, -30.0, 30.0)};
+  d.body.specific_force = {0.0, uniform(rng, -30.0, 30.0), uniform(rng, -30.0, 30.0)};
   d.uncage_tick = kCageTicks;
   d.command_seed = rng();
   return d;
@@ -103,7 +103,7 @@ RunResult run_one(const Dispersed& d, std::uint64_t fault_start) {
   gyro::SimulatedGyro<double> stub;
   gyro::GyroComponent<double> comp(stub);
   gyro::sil::BodyMotion body(d.body, d.gyro.tick_s);
-  if (!stub.configure(d.gyro).ok() || stub.start(body.R_earth_to_body(), body.rate_rad_s()) != gyro::Status::kOk ||
+  if (!stub.configure(d.gyro).ok() || stub.start(body.R_earth_to_body(), Eigen::Vector2d(body.rate_rad_s().tail<2>())) != gyro::Status::kOk ||
       !comp.configure(d.component).ok() || comp.activate() != gyro::Status::kOk) {
     std::fprintf(stderr, "configuration refused\n");
     std::exit(2);
@@ -113,13 +113,13 @@ RunResult run_one(const Dispersed& d, std::uint64_t fault_start) {
   in.nav_valid = true;
   for (std::uint64_t k = 1; k <= kRunTicks; ++k) {
     body.advance();
-    if (stub.advance(k, body.R_earth_to_body(), body.accel()) != gyro::Status::kOk) std::exit(3);
+    if (stub.advance(k, body.R_earth_to_body(), Eigen::Vector2d(body.specific_force().tail<2>())) != gyro::Status::kOk) std::exit(3);
     in.R_earth_to_body = body.R_earth_to_body();
-    in.body_rate_rad_s = Eigen::Vector3d(0.0, body.rate_rad_s()(0), body.rate_rad_s()(1));
+    in.body_rate_rad_s = body.rate_rad_s();
     in.request = (k == d.uncage_tick) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
     if (k % kCommandPeriod == 0) {
       // Slew around the body's own motion so the gimbals stay inside their cone.
-      in.slew_rate_cmd_rad_s = body.rate_rad_s() + Vec2(uniform(cmd_rng, -0.4, 0.4), uniform(cmd_rng, -0.4, 0.4)) -
+      in.slew_rate_cmd_rad_s = Eigen::Vector2d(body.rate_rad_s().tail<2>()) + Vec2(uniform(cmd_rng, -0.4, 0.4), uniform(cmd_rng, -0.4, 0.4)) -
                                0.5 * comp.telemetry().gimbal_measured_rad / (kCommandPeriod * d.gyro.tick_s);
     }
     (void)comp.step(k, in);

@@ -47,11 +47,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   s.gyro.faults = {};
-  s.body.rate_rad_s = {0.0, 0.0};  // the body weaves about a fixed mean attitude
+  s.body.rate_rad_s = {0.0, 0.0, 0.0};  // the body weaves about a fixed mean attitude
   gyro::SimulatedGyro<double> stub;
   gyro::GyroComponent<double> comp(stub);
   gyro::sil::BodyMotion body(s.body, s.run.tick_s);
-  if (!stub.configure(s.gyro).ok() || stub.start(body.R_earth_to_body(), body.rate_rad_s()) != gyro::Status::kOk ||
+  if (!stub.configure(s.gyro).ok() || stub.start(body.R_earth_to_body(), Eigen::Vector2d(body.rate_rad_s().tail<2>())) != gyro::Status::kOk ||
       !comp.configure(s.component).ok() || comp.activate() != gyro::Status::kOk) {
     std::fprintf(stderr, "configuration refused\n");
     return 2;
@@ -69,15 +69,15 @@ int main(int argc, char** argv) {
   for (std::uint64_t k = 1; k <= ticks; ++k) {
     body.advance();
     t_accumulated += tick_f;
-    if (stub.advance(k, body.R_earth_to_body(), body.accel()) != gyro::Status::kOk) {
+    if (stub.advance(k, body.R_earth_to_body(), Eigen::Vector2d(body.specific_force().tail<2>())) != gyro::Status::kOk) {
       std::fprintf(stderr, "stub refused tick %" PRIu64 "\n", k);
       return 1;
     }
     in.R_earth_to_body = body.R_earth_to_body();
-    in.body_rate_rad_s = Eigen::Vector3d(0.0, body.rate_rad_s()(0), body.rate_rad_s()(1));
+    in.body_rate_rad_s = body.rate_rad_s();
     in.request = (k == 100) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
     // Track the body, closing the gimbal angles slowly: the seeker holds its line of sight.
-    in.slew_rate_cmd_rad_s = body.rate_rad_s() - 2.0 * comp.telemetry().gimbal_measured_rad;
+    in.slew_rate_cmd_rad_s = Eigen::Vector2d(body.rate_rad_s().tail<2>()) - 2.0 * comp.telemetry().gimbal_measured_rad;
     if (comp.step(k, in) != gyro::Status::kOk) {
       std::fprintf(stderr, "component refused tick %" PRIu64 "\n", k);
       return 1;

@@ -59,7 +59,7 @@ struct GimbalPlantConfig {
   T mass_unbalance{};
 
   // Mechanical stop on the total cone angle between spin axis and body x.
-  T stop_cone_rad{};      // 0 < stop <= kMaxGimbalStopCone (gimbal lock stays out of reach)
+  T stop_cone_rad{};      // kMinGimbalStopCone <= stop <= kMaxGimbalStopCone (gimbal lock out of reach)
   T stop_restitution{};   // in [0, 1]: 0 a dead stop, 1 an elastic bounce
 
   TorqueAxes torque_axes{TorqueAxes::kGimbal};
@@ -78,6 +78,10 @@ struct GimbalPlantConfig {
 // 90 deg); a stop up to here keeps it above 3 % of its value at zero.
 template <typename T>
 inline constexpr T kMaxGimbalStopCone = T(1.3962634015954636);
+// A stop closer than a milliradian is no gimbal freedom (and its contact's sub-steps
+// would not resolve it).
+template <typename T>
+inline constexpr T kMinGimbalStopCone = T(1e-3);
 // The most sub-steps a configuration may ask for per tick (bounds the cost of one step).
 inline constexpr int kMaxGimbalSubsteps = 4096;
 
@@ -88,6 +92,10 @@ template <typename T>
   return m(0) <= m(1) + m(2) && m(1) <= m(0) + m(2) && m(2) <= m(0) + m(1);
 }
 }  // namespace gimbal_detail
+
+// The largest transverse (rotor or ring) inertia, as a multiple of the spin inertia.
+template <typename T>
+inline constexpr T kMaxInertiaRatio = T(1e6);
 
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GimbalPlantConfig<T>& c) noexcept {
@@ -129,6 +137,14 @@ template <typename T>
     if (gimbals[i]->minCoeff() < T(0)) return {Status::kNonPositiveInertia, gimbal_names[i]};
     if (!gimbal_detail::is_physical(*gimbals[i])) return {Status::kOutOfRange, gimbal_names[i]};
   }
+  // Transverse inertias beyond a million times the spin inertia are no gyro (and their sums
+  // with the rotor's overflow first).
+  if (!(c.rotor_transverse_inertia <= kMaxInertiaRatio<T> * c.spin_inertia)) {
+    return {Status::kOutOfRange, "rotor_transverse_inertia"};
+  }
+  for (int i = 0; i < 2; ++i) {
+    if (!(gimbals[i]->maxCoeff() <= kMaxInertiaRatio<T> * c.spin_inertia)) return {Status::kOutOfRange, gimbal_names[i]};
+  }
   if (!std::isfinite(c.mass_unbalance)) return {Status::kNonFiniteInput, "mass_unbalance"};
   if (c.spin_drive != SpinDrive::kMotor && c.spin_drive != SpinDrive::kFree) {
     return {Status::kOutOfRange, "spin_drive"};
@@ -140,7 +156,9 @@ template <typename T>
     if (!std::isfinite(c.motor_torque_limit)) return {Status::kNonFiniteInput, "motor_torque_limit"};
     if (!(c.motor_torque_limit > T(0))) return {Status::kOutOfRange, "motor_torque_limit"};
   }
-  if (!(c.stop_cone_rad <= kMaxGimbalStopCone<T>)) return {Status::kOutOfRange, "stop_cone_rad"};
+  if (!(c.stop_cone_rad <= kMaxGimbalStopCone<T> && c.stop_cone_rad >= kMinGimbalStopCone<T>)) {
+    return {Status::kOutOfRange, "stop_cone_rad"};
+  }
   if (!(c.stop_restitution <= T(1))) return {Status::kOutOfRange, "stop_restitution"};
   if (!(c.max_substep_phase_rad <= T(2))) return {Status::kOutOfRange, "max_substep_phase_rad"};
   return {};

@@ -106,7 +106,16 @@ template <typename T>
   if (!p.ok()) return p;
   const ConfigCheck t = check(c.torquer);
   if (!t.ok()) return t;
-  return check(c.faults);
+  const ConfigCheck f = check(c.faults);
+  if (!f.ok() || c.plant != PlantKind::kGimbal) return f;
+  // The gimbal plant's sub-steps resolve a spin run-down no faster than its fastest rate.
+  for (std::size_t i = 0; i < c.faults.size(); ++i) {
+    const FaultEvent<T>& e = c.faults[i];
+    if (e.kind == FaultKind::kSpinMotorFailure && T(1) / e.magnitude > gimbal_fastest_rate(c.gimbal)) {
+      return {Status::kOutOfRange, kFaultFieldNames[i].magnitude};
+    }
+  }
+  return {};
 }
 
 // The body's motion at a tick (the truth the scenario drives the stub with).

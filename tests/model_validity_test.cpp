@@ -4,6 +4,9 @@
 // a body turning faster than the torquer can follow.
 #include <gtest/gtest.h>
 
+#include <ostream>
+#include <string>
+
 #include "validity_envelope.hpp"
 
 namespace gyro::validity {
@@ -21,6 +24,10 @@ constexpr double kWindow = 0.5;  // s of steady slew measured (the tool: 1 s)
 struct Corner {
   double cone_deg, turn_rad_s, roll_rad_s;
 };
+
+void PrintTo(const Corner& c, std::ostream* os) {
+  *os << "cone " << c.cone_deg << " deg, turn " << c.turn_rad_s << " rad/s, roll " << c.roll_rad_s << " rad/s";
+}
 
 class EnvelopeCorner : public ::testing::TestWithParam<Corner> {};
 
@@ -43,10 +50,26 @@ TEST_P(EnvelopeCorner, GIVEN_the_gimbal_plant_WHEN_slewing_along_the_cone_THEN_n
   }
 }
 
+// "cone20_turn0p5_roll10"
+std::string corner_name(const ::testing::TestParamInfo<Corner>& info) {
+  auto number = [](double v) {
+    std::string s = std::to_string(v);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    for (char& ch : s) {
+      if (ch == '.') ch = 'p';
+    }
+    return s;
+  };
+  const Corner& c = info.param;
+  return "cone" + number(c.cone_deg) + "_turn" + number(c.turn_rad_s) + "_roll" + number(c.roll_rad_s);
+}
+
 INSTANTIATE_TEST_SUITE_P(DoneWhenCorners, EnvelopeCorner,
                          ::testing::Values(Corner{0, 1, 0}, Corner{0, 1, 10}, Corner{20, 0, 0}, Corner{20, 0, 10},
                                            Corner{20, 1, 0}, Corner{20, 1, 10}, Corner{10, 1, 5},
-                                           Corner{20, 0.5, 10}));
+                                           Corner{20, 0.5, 10}),
+                         corner_name);
 
 TEST(EnvelopeBeyond, GIVEN_a_body_turning_faster_than_the_torquer_follows_WHEN_free_THEN_the_gimbal_limit_is_flagged_before_the_stop) {
   // 2 rad/s across body x (1.41 rad/s on pitch and on yaw) against 1 rad/s per axis of slew

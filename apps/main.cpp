@@ -1,8 +1,13 @@
 // gyro_sil: runs the flight gyro component against the simulated gyro, as a scenario file
 // describes, and writes the time history as CSV (and a plot of the gimbal angles).
 //
-//   gyro_sil SCENARIO.json [-o out.csv] [--plot out.png] [--precision float|double] [--quiet]
-//            [--max-output-bytes N] [--plot-timeout S]
+//   gyro_sil SCENARIO.json [-o out.csv] [--plot out.png] [--precision float|double] [--ticks N]
+//            [--quiet] [--max-output-bytes N] [--plot-timeout S]
+//            [--pil SOCKET [--pil-firmware IMAGE.elf] [--pil-machine M] [--pil-tick-clocks N]
+//             [--pil-fault KIND@TICK[+TICKS]]... [--pil-timeout S]]
+//
+// --pil runs the component on an emulated target over a serial line (docs/pil.md) instead of
+// in process: the same loop, CSV (plus pil_* columns) and plot.
 //
 // Exit status (docs/scenarios.md): 0 done; 1 the run failed (the software refused a call, a
 // non-finite value, an output not writable); 2 refused before anything ran (command line,
@@ -17,6 +22,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "csv_writer.hpp"
 #include "output_files.hpp"
@@ -114,6 +120,28 @@ CsvSink open_csv(const OutputTarget& t, bool plotting) {
   return sink;
 }
 
+void print_pil_summary(const PilSummary& p) {
+  const double ipc = p.instructions_per_clock();
+  const double cycles = p.cycles == 0 ? 1.0 : static_cast<double>(p.cycles);
+  const gyro::pil::TickOut& r = p.last_report;
+  std::fprintf(stderr,
+               "gyro_sil: pil: target in %s, timer %u clocks per tick; %llu ticks run, %llu skipped, %u overruns; "
+               "%.0f exchanges/s\n",
+               p.target_real_bytes == 8 ? "double" : "float", p.tick_clocks, static_cast<unsigned long long>(p.cycles),
+               static_cast<unsigned long long>(p.skipped), p.overruns,
+               p.exchange_wall_s > 0 ? static_cast<double>(p.cycles) / p.exchange_wall_s : 0.0);
+  std::fprintf(stderr,
+               "gyro_sil: pil: step %.0f instructions mean, %.0f worst at tick %llu (clocks x %.0f under -icount "
+               "shift=0)\n",
+               static_cast<double>(p.step_clocks_total) / cycles * ipc, static_cast<double>(p.step_clocks_worst) * ipc,
+               static_cast<unsigned long long>(p.worst_tick), ipc);
+  std::fprintf(stderr,
+               "gyro_sil: pil: gyro link at the target: %u readings, %u timeouts, %u bus errors, %u duplicates, %u "
+               "lost, %u CRC errors, %u header errors, %u bytes skipped; %llu torque commands applied\n",
+               r.port.readings, r.port.timeouts, r.port.bus_errors, r.port.duplicates, r.port.frames_lost, r.crc_errors,
+               r.header_errors, r.bytes_skipped, static_cast<unsigned long long>(p.torque_commands));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -126,6 +154,10 @@ int main(int argc, char** argv) {
   std::uint64_t max_output_bytes = kDefaultMaxOutputBytes;
   double plot_timeout_s = kDefaultPlotTimeoutS;
   bool quiet = false;
+  std::uint64_t ticks = 0;
+  PilOptions pil;
+  std::vector<std::string> pil_faults;
+  std::uint32_t pil_tick_clocks = 0;
   app.add_option("scenario", scenario_path, "scenario file (JSON, see docs/scenarios.md)")->required();
   app.add_option("-o,--output", csv_path, "CSV time history to write ('-' = standard output)")
       ->capture_default_str();
@@ -139,7 +171,30 @@ int main(int argc, char** argv) {
       ->transform(CLI::AsSizeValue(true));
   app.add_option("--plot-timeout", plot_timeout_s, "seconds gnuplot may take before it is stopped (default 300)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--ticks", ticks, "run this many ticks after tick 0 instead of the scenario's duration")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   app.add_flag("-q,--quiet", quiet, "no progress or summary on standard error (failures are still reported)");
+  CLI::Option* pil_opt = app.add_option("--pil", pil.socket,
+                                        "processor in the loop: run the component on the target behind this UNIX "
+                                        "socket (QEMU's serial chardev server); see docs/pil.md");
+  app.add_option("--pil-firmware", pil.firmware, "start QEMU with this PIL image (gyro_fw_pil.elf) on the socket "
+                                                 "(without it: attach to a QEMU already listening there)")
+      ->needs(pil_opt);
+  app.add_option("--pil-machine", pil.machine, "QEMU machine of the started target (mps2-an386: Cortex-M4F, "
+                                               "mps2-an500: Cortex-M7)")
+      ->capture_default_str()
+      ->needs(pil_opt);
+  app.add_option("--pil-tick-clocks", pil_tick_clocks, "the target's timer period in its clocks (default: the "
+                                                       "scenario's tick); shorter than a step to provoke overruns")
+      ->check(CLI::Range(2u, 1u << 24))
+      ->needs(pil_opt);
+  app.add_option("--pil-fault", pil_faults, "inject a fault on the gyro link: KIND@TICK[+TICKS], KIND one of crc, "
+                                            "drop, duplicate, stall, noise (repeatable)")
+      ->needs(pil_opt);
+  app.add_option("--pil-timeout", pil.timeout_s, "seconds of silence from the target before giving up")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->needs(pil_opt);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -152,6 +207,14 @@ int main(int argc, char** argv) {
 
   const std::optional<Precision> precision =
       precision_name.empty() ? std::nullopt : parse_precision(precision_name);
+  for (const std::string& text : pil_faults) {
+    std::string error;
+    const std::optional<WireFault> f = parse_wire_fault(text, error);
+    if (!f) return fail(kExitRefused, "bad command line: --pil-fault " + printable(text) + ": " + error);
+    pil.faults.push_back(*f);
+  }
+  if (pil_tick_clocks != 0) pil.tick_clocks = pil_tick_clocks;
+  pil.target_console = !quiet;
 
   // Everything that can be refused is refused before any output exists.
   Scenario scenario;
@@ -166,6 +229,7 @@ int main(int argc, char** argv) {
   } catch (const OutputError& e) {
     return fail(kExitRunFailed, e.what());
   }
+  if (ticks != 0) scenario.run.ticks = ticks;
   const std::uint64_t csv_bound = csv_size_bound(scenario);
   if (csv_bound > max_output_bytes) {
     return fail(kExitRefused, std::string("refused: ") + ScenarioError(scenario.file, scenario.run.length_field,
@@ -190,6 +254,7 @@ int main(int argc, char** argv) {
     options.progress = !quiet;
     options.label = "gyro_sil: " + printable(fs::path(scenario_path).filename().string());
     options.max_csv_bytes = max_output_bytes;
+    if (!pil.socket.empty()) options.pil = pil;
     CsvWriter csv(csv_out.out());
     RunSummary sum;
     try {
@@ -228,6 +293,7 @@ int main(int argc, char** argv) {
                    static_cast<double>(sum.ticks) * scenario.run.tick_s, to_string(sum.precision), sum.wall_s,
                    gyro::to_string(sum.final_mode), flags.empty() ? "none" : flags.c_str(),
                    to_file ? "; wrote " : "", to_file ? printable(plan.csv.given).c_str() : "");
+      if (sum.pil) print_pil_summary(*sum.pil);
       if (plotting && plot_failure.empty()) std::fprintf(stderr, "gyro_sil: plot: %s\n", printable(plot_path).c_str());
     }
     if (!plot_failure.empty()) return fail(kExitPlotFailed, "plot failed: " + plot_failure);

@@ -4,10 +4,15 @@
 #include <chrono>
 #include <limits>
 #include <cmath>
+#include <memory>
+#include <optional>
+#include <vector>
 
 #include "body_motion.hpp"
+#include "flight_computer.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "pil_flight.hpp"
 #include "scenario_limits.hpp"
 
 namespace gyro::sil {
@@ -203,7 +208,7 @@ std::string refusal(const Scenario& s, const std::string& path, const char* who,
 
 // Configures both sides; a refusal names the scenario's JSON field.
 template <typename T>
-void configure_both(const Scenario& s, SimulatedGyro<T>& stub, GyroComponent<T>& comp) {
+void configure_both(const Scenario& s, SimulatedGyro<T>& stub, FlightComputer<T>& comp) {
   const ConfigCheck g = stub.configure(cast_config<T>(s.gyro));
   if (!g.ok()) {
     const std::string path = gyro_field_path(s, g.field ? g.field : "(unnamed)");
@@ -272,11 +277,18 @@ class Progress {
 
 template <typename T>
 RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) {
+  RunSummary sum;
   SimulatedGyro<T> stub;
-  GyroComponent<T> comp(stub);
+  std::unique_ptr<FlightComputer<T>> flight;
+  if (options.pil) {
+    sum.pil.emplace();
+    flight = make_pil_flight(stub, *options.pil, *sum.pil);
+  } else {
+    flight = std::make_unique<LocalFlightComputer<T>>(stub);
+  }
+  FlightComputer<T>& comp = *flight;
   configure_both<T>(s, stub, comp);
 
-  RunSummary sum;
   sum.precision = s.run.precision;
   sum.ticks = s.run.ticks;
 
@@ -296,8 +308,11 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
   if (started != Status::kOk) throw RunError(std::string("SimulatedGyro::start refused: ") + to_string(started));
   const Status active = comp.activate();
   if (active != Status::kOk) throw RunError(std::string("GyroComponent::activate refused: ") + to_string(active));
+  Status last_step = Status::kOk;  // held over the ticks a processor in the loop skipped
 
-  csv.header(csv_columns());
+  std::vector<std::string_view> columns(csv_columns().begin(), csv_columns().end());
+  columns.insert(columns.end(), comp.extra_columns().begin(), comp.extra_columns().end());
+  csv.header(columns);
   for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
     if (k > 0) {
       body.advance();
@@ -312,8 +327,10 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     in.nav_valid = guidance.nav_valid();
     in.R_earth_to_body = body.R_earth_to_body().cast<T>();
     in.body_rate_rad_s = body.rate_rad_s().cast<T>();
-    const Status step = comp.step(k, in);
-    if (step != Status::kOk && step != Status::kInputIgnored) ++sum.refused_steps;
+    const std::optional<Status> ran = comp.step(k, in);
+    if (ran && *ran != Status::kOk && *ran != Status::kInputIgnored) ++sum.refused_steps;
+    const Status step = ran.value_or(last_step);
+    last_step = step;
 
     const GyroTelemetry<T>& tm = comp.telemetry();
     const Vector2<T> truth_angle = stub.gimbal_angle_rad();
@@ -369,6 +386,7 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     csv.integer(truth_flags | (stub.at_gimbal_stop() ? 4u : 0u));
     csv.integer(stub.active_faults());
     csv.integer(static_cast<std::uint64_t>(step));
+    comp.write_extras(csv);
     csv.end_row();
     if (!csv.ok()) throw RunError("writing the CSV failed at tick " + std::to_string(k));
     if (csv.bytes() > options.max_csv_bytes) {
@@ -379,6 +397,7 @@ RunSummary run_in(const Scenario& s, CsvWriter& csv, const RunOptions& options) 
     progress.tick(k, t);
   }
 
+  comp.finish();
   sum.rows = csv.rows();
   sum.final_mode = comp.mode();
   sum.counters = comp.telemetry().counters;
@@ -452,11 +471,11 @@ void check_configs(const Scenario& s) {
   check_precision_range(s);
   if (s.run.precision == Precision::kFloat) {
     SimulatedGyro<float> stub;
-    GyroComponent<float> comp(stub);
+    LocalFlightComputer<float> comp(stub);
     configure_both<float>(s, stub, comp);
   } else {
     SimulatedGyro<double> stub;
-    GyroComponent<double> comp(stub);
+    LocalFlightComputer<double> comp(stub);
     configure_both<double>(s, stub, comp);
   }
   check_run_limits(s);

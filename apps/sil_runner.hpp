@@ -12,12 +12,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
 #include "csv_writer.hpp"
+#include "pil_options.hpp"
 #include "scenario.hpp"
 
 namespace gyro::sil {
@@ -52,6 +54,9 @@ struct RunOptions {
   // The run stops (RunError) once the CSV passes this many bytes: a guard behind the check
   // of csv_size_bound() up front, which should always have refused such a run first.
   std::uint64_t max_csv_bytes{std::numeric_limits<std::uint64_t>::max()};
+  // Processor in the loop: the component runs on an emulated target over a serial line
+  // (pil_flight.hpp) instead of in process; the CSV gains the pil_* columns.
+  std::optional<PilOptions> pil;
 };
 
 struct RunSummary {
@@ -66,6 +71,7 @@ struct RunSummary {
   std::uint64_t gimbal_stop_hits{0}; // ticks in which the stub's gimbal hit its stop
   double max_abs_gimbal_rad{0};      // largest true gimbal angle, either axis
   double wall_s{0};                  // wall-clock time of the loop (not in the CSV)
+  std::optional<PilSummary> pil;     // a processor-in-the-loop run's timing and link figures
 };
 
 // Checks the scenario in its precision: the range of its numbers, then configures a stub and a

@@ -148,6 +148,67 @@ def component_seeds():
     }
 
 
+# --- fuzz_frame_decoder --------------------------------------------------------------------
+# An encoder of docs/pil-protocol.md written from the document: sync 0xA5 0x5A, type (bit 7:
+# binary64 reals), sequence, length, payload, CRC-16/CCITT-FALSE (little-endian) over type ..
+# payload.
+def crc16(data):
+    crc = 0xFFFF
+    for b in data:
+        crc ^= b << 8
+        for _ in range(8):
+            crc = ((crc << 1) ^ 0x1021) if crc & 0x8000 else (crc << 1)
+            crc &= 0xFFFF
+    return crc
+
+
+def frame(msg_id, payload, double, seq=0):
+    body = bytes([msg_id | (0x80 if double else 0), seq & 0xFF, len(payload)]) + payload
+    return b"\xa5\x5a" + body + struct.pack("<H", crc16(body))
+
+
+def reals(values, double):
+    return struct.pack("<%d%s" % (len(values), "d" if double else "f"), *values)
+
+
+def pickoff(seq, pitch, yaw, double, status=3, conversion=None):
+    conv = seq if conversion is None else conversion
+    return frame(0x01, struct.pack("<IB", conv, status) + reals([pitch, yaw, 400.0], double), double, seq)
+
+
+def torque(seq, t1, t2, double):
+    return frame(0x02, reals([t1, t2], double), double, seq)
+
+
+def harness_frames(double):
+    config = reals([1e-3, 2e-5, 2e-5, 3e-5, 4e-4, 400, 200, 1, 1, 0.04, 20, 0.35, 0.03, 0.01, 0.5, 5e-3,
+                    0.02, 1.7e-3, 100], double) + bytes([3]) + struct.pack("<8I", 20, 10, 50, 50, 50, 8, 50, 25000)
+    tick_in = struct.pack("<IBB", 7, 24, 0x6) + reals([0.3, -0.2, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.05, -0.03], double)
+    tick_out = struct.pack("<IBIBIB4IB", 8, 1, 7, 0, 141, 15, 8, 8, 0, 0, 0) + struct.pack("<14I", *range(14))
+    telemetry = struct.pack("<IBI", 7, 3, 4) + struct.pack("<18I", *range(18)) + reals(
+        [0.01 * i for i in range(14)] + [1, 0, 0, 0, 400], double)
+    return (frame(0x10, struct.pack("<HBI", 1, 8 if double else 4, 25000000), double, 0) +
+            frame(0x11, config, double, 1) + frame(0x12, bytes(25), double, 2) + frame(0x13, tick_in, double, 3) +
+            frame(0x14, tick_out, double, 4) + frame(0x15, telemetry, double, 5) + frame(0x16, b"\x00", double, 6))
+
+
+def frame_decoder_seeds():
+    seeds = {}
+    for double in (False, True):
+        kind = "double" if double else "float"
+        head_link = 1 if double else 0
+        clean = b"".join(pickoff(i, 0.001 * i, -0.002 * i, double) for i in range(4)) + torque(9, 0.01, -0.02, double)
+        seeds[f"link_{kind}_clean"] = bytes([head_link]) + clean
+        good = pickoff(5, 0.1, 0.2, double)
+        bad_crc = bytearray(good)
+        bad_crc[6] ^= 0x01
+        seeds[f"link_{kind}_faults"] = bytes([head_link | (7 << 2)]) + (
+            b"\x00\xa5\x13\x5a" + good[:10] + good + bytes(bad_crc) + good + good +
+            pickoff(7, 0.1, 0.2, double, status=0x80) + torque(1, float("nan"), 0.0, double) + pickoff(9, 0.3, 0.1, double))
+        seeds[f"harness_{kind}"] = bytes([2 | head_link]) + harness_frames(double)
+    return seeds
+
+
 # --- fuzz_scenario_parser ------------------------------------------------------------------
 BAD_SEEDS = ["bad_json.json", "bad_fault_kind.json", "missing_field.json", "unknown_key.json",
              "schedule_out_of_order.json", "wrong_type_integer.json", "duplicate_key.json",
@@ -160,6 +221,7 @@ def main():
     targets = {
         "fuzz_rotor_step": rotor_seeds(),
         "fuzz_component_tick": component_seeds(),
+        "fuzz_frame_decoder": frame_decoder_seeds(),
     }
     for target, seeds in targets.items():
         d = CORPUS / target

@@ -5,7 +5,9 @@
 #   aarch64, armhf, ppc, riscv64   the GoogleTest suite of the flight libraries under
 #                                  qemu-user (preset cross-linux: the host tools and their
 #                                  tests are built and run on the host and under sanitizers)
-# then prints the bare-metal footprint table (scripts/footprint.sh) and each target's time.
+# then prints the bare-metal footprint table (scripts/footprint.sh), runs the
+# processor-in-the-loop checks on both (scripts/pil.sh: 20 to 40 s) and prints each
+# target's time.
 #
 #   scripts/ci-cross.sh [preset...]        (default: all six)
 #   CROSS_FRESH=1 scripts/ci-cross.sh      reconfigure from scratch (cmake --fresh)
@@ -47,6 +49,13 @@ if [ ${#bare_metal[@]} -gt 0 ]; then
   start=$(date +%s)
   if scripts/footprint.sh "${bare_metal[@]}"; then result=passed; else result=FAILED; failed=1; fi
   summary+=("$(printf '%-11s %-7s %4d s' footprint "$result" $(( $(date +%s) - start )))")
+fi
+
+if [[ " ${bare_metal[*]} " == *" cortex-m4f "* && " ${bare_metal[*]} " == *" cortex-m7 "* ]]; then
+  echo "=== processor in the loop: scripts/pil.sh"
+  start=$(date +%s)
+  if scripts/pil.sh; then result=passed; else result=FAILED; failed=1; fi
+  summary+=("$(printf '%-11s %-7s %4d s' pil "$result" $(( $(date +%s) - start )))")
 fi
 
 echo "=== cross targets"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Static analysis of the flight libraries (component/, port/, hil_stub/): clang-tidy with the
+# Static analysis of the flight libraries (component/, port/, hil_stub/, pil/): clang-tidy with the
 # check set of .clang-tidy and cppcheck (warning, performance, portability, style). Exits
 # non-zero on any finding. docs/coding-rules.md lists the checks and every exclusion.
 #
@@ -26,10 +26,13 @@ fi
 
 failed=0
 
-# 1. Every header of the three libraries is in the analysed translation unit.
+# 1. Every header of the libraries (subfolders included: gyro/link/...) is in the analysed
+# translation unit.
+mapfile -t lib_headers < <(find component/include/gyro port/include/gyro hil_stub/include/gyro pil/include/gyro \
+  -name '*.hpp' | sort)
 echo "== headers in $tu"
-for h in component/include/gyro/*.hpp port/include/gyro/*.hpp hil_stub/include/gyro/*.hpp; do
-  name="gyro/$(basename "$h")"
+for h in "${lib_headers[@]}"; do
+  name="${h#*/include/}"
   if ! grep -q "^#include \"${name}\"" "$tu"; then
     echo "$tu: does not include \"$name\": the header would escape the analysis"
     failed=1
@@ -39,8 +42,7 @@ done
 # 2. Constructs the flight rules ban from the three libraries (docs/coding-rules.md), looked
 # for in the code with // comments removed. The compiler flags and the tests enforce most of
 # these too; this names the rule and the line.
-echo "== banned constructs in component/, port/, hil_stub/"
-lib_headers=(component/include/gyro/*.hpp port/include/gyro/*.hpp hil_stub/include/gyro/*.hpp)
+echo "== banned constructs in component/, port/, hil_stub/, pil/"
 ban() {  # ban <rule> <extended regex> [<regex of allowed matches>]
   local rule="$1" re="$2" allow="${3:-}" h hits
   for h in "${lib_headers[@]}"; do
@@ -92,7 +94,7 @@ cppcheck_log="$build_dir/cppcheck.log"
 cppcheck_rc=0
 "$cppcheck" --enable=warning,performance,portability,style --inline-suppr --std=c++17 \
   --language=c++ --error-exitcode=1 --quiet \
-  -I component/include -I port/include -I hil_stub/include \
+  -I component/include -I port/include -I hil_stub/include -I pil/include \
   --suppress=missingIncludeSystem \
   --template='{file}:{line}:{column}: {severity}: {message} [{id}]' \
   "$tu" > "$cppcheck_log" 2>&1 || cppcheck_rc=$?
@@ -108,4 +110,4 @@ if [ "$failed" -ne 0 ]; then
   echo "static-analysis: FAILED"
   exit 1
 fi
-echo "static-analysis: clean (clang-tidy, cppcheck) on component/, port/, hil_stub/"
+echo "static-analysis: clean (clang-tidy, cppcheck) on component/, port/, hil_stub/, pil/"

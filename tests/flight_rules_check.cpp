@@ -1,7 +1,7 @@
 // Compiled with -std=c++17 -fno-exceptions -fno-rtti -Werror: every public header of the
 // libraries, instantiated for float and double. Building this file is the check. It is also
 // the translation unit that scripts/static-analysis.sh runs clang-tidy and cppcheck on, which
-// requires every header under component/, port/ and hil_stub/ to be included here by name.
+// requires every header under component/, port/, hil_stub/ and pil/ to be included here by name.
 #include "gyro/attitude.hpp"
 #include "gyro/component_config.hpp"
 #include "gyro/component_types.hpp"
@@ -55,6 +55,66 @@ template class NoiseStream<double>;
 // (GyroPort's is protected). clang-tidy 14's check does not exempt final classes.
 template class SimulatedGyro<float>;   // NOLINT(cppcoreguidelines-virtual-class-destructor)
 template class SimulatedGyro<double>;  // NOLINT(cppcoreguidelines-virtual-class-destructor)
+}  // namespace gyro
+
+#include "gyro/link/byte_fifo.hpp"
+#include "gyro/link/byte_link.hpp"
+#include "gyro/link/cmsdk_apb_uart.hpp"
+#include "gyro/link/crc16.hpp"
+#include "gyro/link/frame.hpp"
+#include "gyro/link/frame_decoder.hpp"
+#include "gyro/link/gyro_link_messages.hpp"
+#include "gyro/link/link_gyro_port.hpp"
+#include "gyro/link/wire.hpp"
+#include "gyro/rate_group.hpp"
+
+namespace gyro {
+template class link::ByteFifo<64>;
+template class link::FifoLink<64, 32>;  // NOLINT(cppcoreguidelines-virtual-class-destructor): final
+template class link::FrameDecoder<link::GyroLinkMessages<float>>;
+template class link::FrameDecoder<link::GyroLinkMessages<double>>;
+template class link::WireWriter<16>;
+template class link::WireReader<16>;
+template class LinkGyroPort<float>;   // NOLINT(cppcoreguidelines-virtual-class-destructor): final
+template class LinkGyroPort<double>;  // NOLINT(cppcoreguidelines-virtual-class-destructor): final
+template link::GyroLinkFrame<float> link::encode_pickoff<float>(const PickoffReading<float>&, std::uint8_t) noexcept;
+template link::GyroLinkFrame<double> link::encode_pickoff<double>(const PickoffReading<double>&, std::uint8_t) noexcept;
+template bool link::decode_pickoff<float>(const link::GyroLinkFrame<float>&, PickoffReading<float>&) noexcept;
+template bool link::decode_pickoff<double>(const link::GyroLinkFrame<double>&, PickoffReading<double>&) noexcept;
+template link::GyroLinkFrame<float> link::encode_torque<float>(const Eigen::Matrix<float, 2, 1>&, std::uint8_t) noexcept;
+template link::GyroLinkFrame<double> link::encode_torque<double>(const Eigen::Matrix<double, 2, 1>&,
+                                                                 std::uint8_t) noexcept;
+template bool link::decode_torque<float>(const link::GyroLinkFrame<float>&, Eigen::Matrix<float, 2, 1>&) noexcept;
+template bool link::decode_torque<double>(const link::GyroLinkFrame<double>&, Eigen::Matrix<double, 2, 1>&) noexcept;
+}  // namespace gyro
+
+#include "gyro/pil/harness.hpp"
+
+namespace gyro::pil {
+template HarnessFrame<float> encode_config<float>(const Config<float>&, std::uint8_t) noexcept;
+template HarnessFrame<double> encode_config<double>(const Config<double>&, std::uint8_t) noexcept;
+template bool decode_config<float>(const HarnessFrame<float>&, Config<float>&) noexcept;
+template bool decode_config<double>(const HarnessFrame<double>&, Config<double>&) noexcept;
+template HarnessFrame<float> encode_tick_in<float>(const TickIn<float>&, std::uint8_t) noexcept;
+template HarnessFrame<double> encode_tick_in<double>(const TickIn<double>&, std::uint8_t) noexcept;
+template bool decode_tick_in<float>(const HarnessFrame<float>&, TickIn<float>&) noexcept;
+template bool decode_tick_in<double>(const HarnessFrame<double>&, TickIn<double>&) noexcept;
+template HarnessFrame<float> encode_tick_out<float>(const TickOut&, std::uint8_t) noexcept;
+template bool decode_tick_out<double>(const HarnessFrame<double>&, TickOut&) noexcept;
+template HarnessFrame<float> encode_telemetry<float>(const GyroTelemetry<float>&, std::uint8_t) noexcept;
+template HarnessFrame<double> encode_telemetry<double>(const GyroTelemetry<double>&, std::uint8_t) noexcept;
+template bool decode_telemetry<float>(const HarnessFrame<float>&, GyroTelemetry<float>&) noexcept;
+template bool decode_telemetry<double>(const HarnessFrame<double>&, GyroTelemetry<double>&) noexcept;
+template HarnessFrame<float> encode_hello<float>(const Hello&, std::uint8_t) noexcept;
+template bool decode_hello<double>(const HarnessFrame<double>&, Hello&) noexcept;
+template HarnessFrame<double> encode_config_ack<double>(const ConfigAck&, std::uint8_t) noexcept;
+template bool decode_config_ack<float>(const HarnessFrame<float>&, ConfigAck&) noexcept;
+template HarnessFrame<float> encode_stop<float>(std::uint8_t, std::uint8_t) noexcept;
+}  // namespace gyro::pil
+
+namespace gyro {
+template class link::FrameDecoder<pil::HarnessMessages<float>>;
+template class link::FrameDecoder<pil::HarnessMessages<double>>;
 }  // namespace gyro
 
 #include "gyro/report_sample.hpp"

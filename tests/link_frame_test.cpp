@@ -1,0 +1,217 @@
+// gyro::link frames: the CRC against its catalogue check value, the wire encoding byte by
+// byte, and the decoder against noise, truncation, corruption (every single-bit error of a
+// frame), wrong lengths and types, and a window it is not allowed to overrun.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "gyro/link/crc16.hpp"
+#include "gyro/link/frame.hpp"
+#include "gyro/link/frame_decoder.hpp"
+#include "gyro/link/gyro_link_messages.hpp"
+#include "gyro/link/wire.hpp"
+
+namespace gyro::link {
+namespace {
+
+template <typename T>
+using Decoder = FrameDecoder<GyroLinkMessages<T>>;
+
+template <typename T>
+PickoffReading<T> sample_reading() {
+  PickoffReading<T> r;
+  r.gimbal_angle_rad = Eigen::Matrix<T, 2, 1>(T(0.125), T(-0.0625));
+  r.sequence = 0x01020304u;
+  r.valid = true;
+  r.spin_valid = true;
+  r.spin_hz = T(400.5);
+  return r;
+}
+
+template <typename T>
+std::vector<std::uint8_t> bytes_of(const GyroLinkFrame<T>& f) {
+  std::array<std::uint8_t, kGyroLinkFrameBytes<T>> buf{};
+  const std::size_t n = encode_frame(f, buf);
+  return std::vector<std::uint8_t>(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(n));
+}
+
+// Feeds bytes, collecting every frame the decoder delivers.
+template <typename T>
+std::vector<GyroLinkFrame<T>> feed(Decoder<T>& d, const std::vector<std::uint8_t>& bytes) {
+  std::vector<GyroLinkFrame<T>> out;
+  for (std::uint8_t b : bytes) {
+    EXPECT_TRUE(d.push(b));
+    for (GyroLinkFrame<T> f; d.next(f);) out.push_back(f);
+  }
+  return out;
+}
+
+TEST(LinkCrc, GivenTheCatalogueCheckStringThenItsCheckValue) {
+  const char* text = "123456789";
+  std::array<std::uint8_t, 9> bytes{};
+  std::memcpy(bytes.data(), text, 9);
+  EXPECT_EQ(crc16(bytes, 0, 9), 0x29B1u);  // CRC-16/CCITT-FALSE (IBM-3740)
+  EXPECT_EQ(crc16(bytes, 0, 0), kCrc16Initial);
+}
+
+TEST(LinkWire, GivenKnownValuesThenLittleEndianIeeeBytes) {
+  std::array<std::uint8_t, 19> buf{};
+  WireWriter w(buf, 0);
+  w.u16(0x1234u);
+  w.u32(0xA1B2C3D4u);
+  w.real(1.0f);   // 0x3F800000
+  w.real(-2.0);   // 0xC000000000000000
+  w.u8(0x7Fu);
+  ASSERT_TRUE(w.ok());
+  const std::array<std::uint8_t, 19> expected = {0x34, 0x12, 0xD4, 0xC3, 0xB2, 0xA1, 0x00, 0x00, 0x80, 0x3F,
+                                                 0,    0,    0,    0,    0,    0,    0,    0xC0, 0x7F};
+  EXPECT_EQ(buf, expected);
+  WireReader r(buf, 0);
+  EXPECT_EQ(r.u16(), 0x1234u);
+  EXPECT_EQ(r.u32(), 0xA1B2C3D4u);
+  EXPECT_EQ(r.real<float>(), 1.0f);
+  EXPECT_EQ(r.real<double>(), -2.0);
+  EXPECT_EQ(r.u8(), 0x7Fu);
+  EXPECT_TRUE(r.ok());
+  // Past the end: nothing read or written, and it says so.
+  EXPECT_EQ(r.u8(), 0u);
+  EXPECT_FALSE(r.ok());
+  w.u8(1);
+  EXPECT_FALSE(w.ok());
+}
+
+TEST(LinkFrame, GivenAPickoffFrameThenTheDocumentedLayout) {
+  const std::vector<std::uint8_t> f = bytes_of<float>(encode_pickoff(sample_reading<float>(), 7));
+  ASSERT_EQ(f.size(), 7u + 17u);
+  EXPECT_EQ(f[0], 0xA5u);
+  EXPECT_EQ(f[1], 0x5Au);
+  EXPECT_EQ(f[2], 0x01u);  // pickoff, binary32
+  EXPECT_EQ(f[3], 7u);
+  EXPECT_EQ(f[4], 17u);
+  EXPECT_EQ(f[5], 0x04u);  // sequence 0x01020304, little-endian
+  EXPECT_EQ(f[9], 0x03u);  // valid | spin valid
+  std::array<std::uint8_t, 24> all{};
+  std::copy(f.begin(), f.end(), all.begin());
+  EXPECT_EQ(crc16(all, 2, 3 + 17), static_cast<std::uint16_t>(f[22] | (f[23] << 8)));
+  const std::vector<std::uint8_t> d = bytes_of<double>(encode_pickoff(sample_reading<double>(), 7));
+  EXPECT_EQ(d.size(), 7u + 29u);
+  EXPECT_EQ(d[2], 0x81u);  // pickoff, binary64
+}
+
+template <typename T>
+void round_trip() {
+  Decoder<T> dec;
+  const PickoffReading<T> in = sample_reading<T>();
+  const std::vector<GyroLinkFrame<T>> frames = feed(dec, bytes_of<T>(encode_pickoff(in, 200)));
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].seq, 200u);
+  PickoffReading<T> out;
+  ASSERT_TRUE(decode_pickoff(frames[0], out));
+  EXPECT_EQ(out.gimbal_angle_rad, in.gimbal_angle_rad);
+  EXPECT_EQ(out.sequence, in.sequence);
+  EXPECT_EQ(out.valid, in.valid);
+  EXPECT_EQ(out.spin_valid, in.spin_valid);
+  EXPECT_EQ(out.spin_hz, in.spin_hz);
+  EXPECT_EQ(dec.counters().frames, 1u);
+  EXPECT_EQ(dec.counters().faults(), 0u);
+}
+
+TEST(LinkDecoder, GivenAFrameThenDecodedBitForBitInFloatAndDouble) {
+  round_trip<float>();
+  round_trip<double>();
+}
+
+TEST(LinkDecoder, GivenNoiseBeforeAndBetweenFramesThenEveryFrameFoundAndTheNoiseCounted) {
+  Decoder<float> dec;
+  std::vector<std::uint8_t> stream = {0x00, 0xA5, 0x13, 0x5A, 0xFF, 0xA5};  // incl. lone sync bytes
+  const std::vector<std::uint8_t> a = bytes_of<float>(encode_pickoff(sample_reading<float>(), 1));
+  const std::vector<std::uint8_t> b = bytes_of<float>(encode_torque(Eigen::Vector2f(1.0f, -1.0f), 2));
+  stream.insert(stream.end(), a.begin(), a.end());
+  stream.insert(stream.end(), {0x5A, 0xA5, 0x5A});  // a sync pair with a short header after it
+  stream.insert(stream.end(), b.begin(), b.end());
+  const std::vector<GyroLinkFrame<float>> frames = feed(dec, stream);
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[0].seq, 1u);
+  EXPECT_EQ(frames[1].seq, 2u);
+  EXPECT_EQ(dec.counters().bytes_skipped, 9u);
+  EXPECT_EQ(dec.buffered(), 0u);
+}
+
+TEST(LinkDecoder, GivenATruncatedFrameThenTheFrameAfterItIsStillFound) {
+  // The stub of a frame claims a length that swallows the next frame's first bytes: its CRC
+  // fails, and the decoder finds the good frame inside the bytes it already holds.
+  Decoder<float> dec;
+  const std::vector<std::uint8_t> good = bytes_of<float>(encode_pickoff(sample_reading<float>(), 9));
+  std::vector<std::uint8_t> stream(good.begin(), good.begin() + 10);  // header and half a payload
+  stream.insert(stream.end(), good.begin(), good.end());
+  const std::vector<GyroLinkFrame<float>> frames = feed(dec, stream);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].seq, 9u);
+  EXPECT_EQ(dec.counters().crc_errors, 1u);
+}
+
+TEST(LinkDecoder, GivenEverySingleBitErrorOfAFrameThenNoFrameIsDelivered) {
+  const std::vector<std::uint8_t> good = bytes_of<double>(encode_pickoff(sample_reading<double>(), 3));
+  for (std::size_t byte = 0; byte < good.size(); ++byte) {
+    for (int bit = 0; bit < 8; ++bit) {
+      std::vector<std::uint8_t> bad = good;
+      bad[byte] = static_cast<std::uint8_t>(bad[byte] ^ (1u << bit));
+      Decoder<double> dec;
+      EXPECT_TRUE(feed(dec, bad).empty()) << "byte " << byte << " bit " << bit;
+      // The next good frame is still found.
+      const std::vector<GyroLinkFrame<double>> after = feed(dec, good);
+      EXPECT_EQ(after.size(), 1u) << "byte " << byte << " bit " << bit;
+    }
+  }
+}
+
+TEST(LinkDecoder, GivenTheOtherRealFormatOrAnUnknownTypeOrWrongLengthThenRefusedAsHeaderErrors) {
+  const std::vector<std::uint8_t> as_double = bytes_of<double>(encode_pickoff(sample_reading<double>(), 1));
+  Decoder<float> dec;
+  EXPECT_TRUE(feed(dec, as_double).empty());  // a float receiver never takes binary64 reals
+  EXPECT_GE(dec.counters().header_errors, 1u);
+
+  std::vector<std::uint8_t> unknown = bytes_of<float>(encode_pickoff(sample_reading<float>(), 1));
+  unknown[2] = 0x03;  // no such message
+  Decoder<float> dec2;
+  EXPECT_TRUE(feed(dec2, unknown).empty());
+  EXPECT_GE(dec2.counters().header_errors, 1u);
+
+  std::vector<std::uint8_t> longer = bytes_of<float>(encode_pickoff(sample_reading<float>(), 1));
+  longer[4] = 18;  // one more than a pickoff frame has
+  Decoder<float> dec3;
+  EXPECT_TRUE(feed(dec3, longer).empty());
+  EXPECT_GE(dec3.counters().header_errors, 1u);
+}
+
+TEST(LinkDecoder, GivenBytesPushedWithoutDrainingThenTheWindowRefusesAndCountsTheOverflow) {
+  Decoder<float> dec;
+  std::size_t accepted = 0;
+  // A sync pair and a header announcing a full frame: the decoder must hold them.
+  for (std::size_t i = 0; i < Decoder<float>::kCapacity + 5; ++i) {
+    const std::uint8_t b = i == 0 ? 0xA5 : (i == 1 ? 0x5A : 0x00);
+    if (dec.push(b)) ++accepted;
+  }
+  EXPECT_EQ(accepted, Decoder<float>::kCapacity);
+  EXPECT_EQ(dec.counters().overflows, 5u);
+}
+
+TEST(LinkMessages, GivenReservedStatusBitsOrANonFiniteTorqueThenDecodingRefusesAndLeavesTheOutput) {
+  GyroLinkFrame<float> f = encode_pickoff(sample_reading<float>(), 1);
+  f.payload[4] = 0x07;  // bit 2 is reserved
+  PickoffReading<float> out;
+  out.sequence = 42;
+  EXPECT_FALSE(decode_pickoff(f, out));
+  EXPECT_EQ(out.sequence, 42u);
+  Eigen::Vector2f t(5.0f, 6.0f);
+  EXPECT_FALSE(decode_torque(encode_torque(Eigen::Vector2f(std::nanf(""), 0.0f), 1), t));
+  EXPECT_EQ(t, Eigen::Vector2f(5.0f, 6.0f));
+  EXPECT_TRUE(decode_torque(encode_torque(Eigen::Vector2f(-0.5f, 0.25f), 1), t));
+  EXPECT_EQ(t, Eigen::Vector2f(-0.5f, 0.25f));
+}
+
+}  // namespace
+}  // namespace gyro::link

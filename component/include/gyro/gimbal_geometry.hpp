@@ -27,6 +27,7 @@ template <typename T>
 struct GimbalFrame {
   T cos_pitch{T(1)};  // cos th (never below kMinCosPitch: the gimbal-lock guard)
   T sin_pitch{};
+  Vector3<T> spin_axis_body{T(1), T(0), T(0)};  // x in body axes
   Vector3<T> y_inner_body{T(0), T(1), T(0)};  // y_I in body axes
   Vector3<T> z_inner_body{T(0), T(0), T(1)};  // z_I in body axes
   Matrix2<T> gimbal_to_gyro{Matrix2<T>::Identity()};  // (y_I, z_I) components -> (y_g, z_g)
@@ -51,6 +52,7 @@ template <typename T>
   }
   f.sin_pitch = -x(2);
   f.cos_pitch = std::max(horizontal, kMinCosPitch<T>);
+  f.spin_axis_body = x;
   f.y_inner_body = Vector3<T>(-sin_yaw, cos_yaw, T(0));
   f.z_inner_body = Vector3<T>(f.sin_pitch * cos_yaw, f.sin_pitch * sin_yaw, horizontal);
   const Vector3<T> y_g = R_gyro_to_body.col(1), z_g = R_gyro_to_body.col(2);
@@ -68,6 +70,7 @@ template <typename T>
   GimbalFrame<T> f;
   f.sin_pitch = sp;
   f.cos_pitch = std::max(cp, kMinCosPitch<T>);
+  f.spin_axis_body = Vector3<T>(cp * cy, cp * sy, -sp);
   f.y_inner_body = Vector3<T>(-sy, cy, T(0));
   f.z_inner_body = Vector3<T>(sp * cy, sp * sy, cp);
   return f;
@@ -84,6 +87,18 @@ template <typename T>
 template <typename T>
 [[nodiscard]] Vector2<T> body_rate_on_gimbal(const GimbalFrame<T>& f, const Vector3<T>& body_rate_rad_s) noexcept {
   return Vector2<T>(f.y_inner_body.dot(body_rate_rad_s), f.z_inner_body.dot(body_rate_rad_s));
+}
+
+// The inner gimbal's angular velocity about the spin axis (what a spin motor holding the
+// spin relative to the inner gimbal adds to the rotor's inertial spin): the body's along x
+// plus the outer gimbal's rate ps' = (w_z - wb_z) / cos th about body z, whose share along x
+// is -sin th. w and wb are the spin axis's and the body's rates on (y_I, z_I).
+template <typename T>
+[[nodiscard]] T inner_gimbal_roll(const GimbalFrame<T>& f, const Vector3<T>& body_rate_rad_s,
+                                  const Vector2<T>& rate_on_gimbal,
+                                  const Vector2<T>& body_rate_on_gimbal_rad_s) noexcept {
+  return f.spin_axis_body.dot(body_rate_rad_s) -
+         f.sin_pitch * (rate_on_gimbal(1) - body_rate_on_gimbal_rad_s(1)) / f.cos_pitch;
 }
 
 // Torquer commands (inner, outer) that hold the spin axis at the inertial rate `rate` (on

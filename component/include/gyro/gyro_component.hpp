@@ -351,7 +351,9 @@ class GyroComponent {
   [[nodiscard]] Vector2<T> torque_command(const GimbalFrame<T>& frame, const Vector2<T>& rate, T spin, bool nav_ok,
                                           std::uint32_t& flags) const noexcept {
     if (mode_ != GyroMode::kCaged && mode_ != GyroMode::kFree) return Vector2<T>::Zero();
-    const T h = angular_momentum(spin, config_.spin_inertia);
+    // The rotor's momentum: the motor-held spin's plus that of the inner gimbal's roll.
+    const T roll = estimator_ready_ ? estimator_.inner_gimbal_roll_rad_s() : T(0);
+    const T h = angular_momentum(spin, config_.spin_inertia) + config_.spin_inertia * roll;
     const T f = config_.friction_compensation ? config_.friction : T(0);
     const Vector2<T> body = nav_ok ? body_rate_on_gimbal(frame, body_rate_) : Vector2<T>::Zero();
     Vector2<T> torque = torquers_for_rate(frame, h, f, rate, body);

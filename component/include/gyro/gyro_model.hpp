@@ -140,6 +140,7 @@ class GyroModel {
     R_earth_to_body_ = R_earth_to_body;
     frame_ = gimbal_frame(gyro_to_body(R_earth_to_body));
     uncaged_ = true;
+    have_frame_roll_ = false;
     return Status::kOk;
   }
 
@@ -165,6 +166,7 @@ class GyroModel {
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
     flags_ = gimbal_flag(gimbal_);
     uncaged_ = true;
+    have_frame_roll_ = false;
     return Status::kOk;
   }
 
@@ -209,8 +211,9 @@ class GyroModel {
     }
 
     GimbalFrame<T> end_frame = frame_;
+    T frame_roll{};
     const Vector2<T> rotor_torque = (config_.torquer_axes == TorquerAxes::kGimbal)
-                                        ? torque_on_gyro_axes(in, torque_cmd, end_frame)
+                                        ? torque_on_gyro_axes(in, torque_cmd, end_frame, frame_roll)
                                         : torque_cmd;
     if (drift_needs_angles_) (void)refresh_angles();  // otherwise they enter multiplied by zero
     const Vector2<T> gimbal(gimbal_.pitch_rad, gimbal_.yaw_rad);
@@ -254,6 +257,8 @@ class GyroModel {
     applied_torque_ = torque;
     R_earth_to_body_ = in.R_earth_to_body;
     frame_ = end_frame;
+    frame_roll_ = frame_roll;
+    have_frame_roll_ = true;
     return Status::kOk;
   }
 
@@ -288,6 +293,9 @@ class GyroModel {
   // The spin axis's inertial rate on the inner gimbal axes (pitch about y_I, yaw about z_I).
   [[nodiscard]] Vector2<T> rate_on_gimbal_rad_s() const noexcept { return frame_.gimbal_to_gyro.transpose() * rate_rad_s_; }
   [[nodiscard]] const GimbalFrame<T>& gimbal_frame_now() const noexcept { return frame_; }
+  // kGimbal: the inner gimbal's roll rate about the spin axis over the last step (0 before
+  // one): J0 times it is the rotor's momentum beyond the motor-held spin's.
+  [[nodiscard]] T inner_gimbal_roll_rad_s() const noexcept { return have_frame_roll_ ? frame_roll_ : T(0); }
   [[nodiscard]] const Vector2<T>& isaf_angle_rad() const noexcept { return isaf_angle_rad_; }  // last step
   [[nodiscard]] const Vector2<T>& nutation_amplitude_rad() const noexcept { return nutation_amplitude_rad_; }
   [[nodiscard]] const Vector2<T>& applied_torque() const noexcept { return applied_torque_; }
@@ -338,17 +346,27 @@ class GyroModel {
 
   // kGimbal: the torquers' and bearings' torque on the rotor, on the gyro's axes. The torquer
   // axes turn with the body over the step: the mean of their two ends is held (second order
-  // in the step). The friction correction moves the model's f w onto the gimbal rates.
+  // in the step). The friction correction moves the model's f w onto the gimbal rates. The
+  // spin motor holds the spin relative to the inner gimbal, which rolls about the spin axis
+  // at `frame_roll`: the rotor's momentum is H + J0 frame_roll, and the motor's torque that
+  // follows frame_roll reacts on the outer axis as M sin th (docs/gimbal-geometry.md).
   // `end_frame` receives the frame at the end of the step (spin axis of its start).
   [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Vector2<T>& torquer,
-                                               GimbalFrame<T>& end_frame) const noexcept {
+                                               GimbalFrame<T>& end_frame, T& frame_roll) const noexcept {
     const GimbalFrame<T>& start = frame_;  // the last step's end (its spin axis: within a tick's turn)
     end_frame = gimbal_frame(gyro_to_body(in.R_earth_to_body));
-    Vector2<T> t = T(0.5) * (start.gimbal_to_gyro * rotor_torque_from_torquers(start, torquer) +
-                             end_frame.gimbal_to_gyro * rotor_torque_from_torquers(end_frame, torquer));
     const Vector2<T> rate_on_gimbal = start.gimbal_to_gyro.transpose() * rate_rad_s_;
-    t += start.gimbal_to_gyro * friction_correction(start, config_.friction, rate_on_gimbal,
-                                                    body_rate_on_gimbal(start, in.body_rate_rad_s));
+    const Vector2<T> body_on_gimbal = body_rate_on_gimbal(start, in.body_rate_rad_s);
+    frame_roll = inner_gimbal_roll(start, in.body_rate_rad_s, rate_on_gimbal, body_on_gimbal);
+    const T motor = have_frame_roll_ ? config_.spin_inertia * (frame_roll - frame_roll_) / in.dt_s : T(0);
+    const Vector2<T> t_start(torquer(0), torquer(1) + motor * start.sin_pitch);
+    const Vector2<T> t_end(torquer(0), torquer(1) + motor * end_frame.sin_pitch);
+    Vector2<T> t = T(0.5) * (start.gimbal_to_gyro * rotor_torque_from_torquers(start, t_start) +
+                             end_frame.gimbal_to_gyro * rotor_torque_from_torquers(end_frame, t_end));
+    t += start.gimbal_to_gyro * friction_correction(start, config_.friction, rate_on_gimbal, body_on_gimbal);
+    // The exact step precesses with the readback's H: the rest of the momentum, J0 frame_roll,
+    // needs (J0 frame_roll) (w_z, -w_y) more, taken off the torque (a quarter turn of w).
+    t += config_.spin_inertia * frame_roll * Vector2<T>(-rate_rad_s_(1), rate_rad_s_(0));
     return t;
   }
 
@@ -385,6 +403,8 @@ class GyroModel {
   NutationMap<T> nutation_map_{};    // cached with it (depends on H only)
   T cached_h_{};
   bool cache_valid_{false};
+  T frame_roll_{};               // the inner gimbal's roll rate about the spin axis, last step
+  bool have_frame_roll_{false};  // none yet since uncaging
 };
 
 }  // namespace gyro

@@ -348,8 +348,9 @@ class GyroModel {
   // axes turn with the body over the step: the mean of their two ends is held (second order
   // in the step). The friction correction moves the model's f w onto the gimbal rates. The
   // spin motor holds the spin relative to the inner gimbal, which rolls about the spin axis
-  // at `frame_roll`: the rotor's momentum is H + J0 frame_roll, and the motor's torque that
-  // follows frame_roll reacts on the outer axis as M sin th (docs/gimbal-geometry.md).
+  // at `frame_roll`: the rotor's momentum is H + J0 frame_roll. The motor's reaction as it
+  // follows frame_roll is not carried: it is a derivative of estimated rates, and with real
+  // pickoff noise it cost more than it gave (docs/gimbal-geometry.md, "Spin motor").
   // `end_frame` receives the frame at the end of the step (spin axis of its start).
   [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Vector2<T>& torquer,
                                                GimbalFrame<T>& end_frame, T& frame_roll) const noexcept {
@@ -358,11 +359,8 @@ class GyroModel {
     const Vector2<T> rate_on_gimbal = start.gimbal_to_gyro.transpose() * rate_rad_s_;
     const Vector2<T> body_on_gimbal = body_rate_on_gimbal(start, in.body_rate_rad_s);
     frame_roll = inner_gimbal_roll(start, in.body_rate_rad_s, rate_on_gimbal, body_on_gimbal);
-    const T motor = have_frame_roll_ ? config_.spin_inertia * (frame_roll - frame_roll_) / in.dt_s : T(0);
-    const Vector2<T> t_start(torquer(0), torquer(1) + motor * start.sin_pitch);
-    const Vector2<T> t_end(torquer(0), torquer(1) + motor * end_frame.sin_pitch);
-    Vector2<T> t = T(0.5) * (start.gimbal_to_gyro * rotor_torque_from_torquers(start, t_start) +
-                             end_frame.gimbal_to_gyro * rotor_torque_from_torquers(end_frame, t_end));
+    Vector2<T> t = T(0.5) * (start.gimbal_to_gyro * rotor_torque_from_torquers(start, torquer) +
+                             end_frame.gimbal_to_gyro * rotor_torque_from_torquers(end_frame, torquer));
     t += start.gimbal_to_gyro * friction_correction(start, config_.friction, rate_on_gimbal, body_on_gimbal);
     // The exact step precesses with the readback's H: the rest of the momentum, J0 frame_roll,
     // needs (J0 frame_roll) (w_z, -w_y) more, taken off the torque (a quarter turn of w).

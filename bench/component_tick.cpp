@@ -23,7 +23,10 @@ template <typename T>
 int run(bool spin_down, long ticks) {
   using namespace gyro;
   SimulatedGyroConfig<T> s = SeekerExample<T>::stub();
-  if (spin_down) s.spin_down_time_constant_s = T(20);
+  if (spin_down) {  // the gimbal plant's rotor free-running down
+    s.gimbal.spin_drive = SpinDrive::kFree;
+    s.gimbal.spin_down_time_s = T(20);
+  }
   SimulatedGyro<T> stub;
   GyroComponent<T> comp(stub);
   Matrix3<T> R = Matrix3<T>::Identity();

@@ -14,6 +14,7 @@
 #include "gyro/attitude.hpp"
 #include "gyro/gyro_model.hpp"
 #include "gyro/report_sample.hpp"
+#include "gyro/seeker_example.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro {
@@ -669,6 +670,24 @@ TEST(SimulatedGyroConfigure, GivenBadFieldsThenRefusedWithTheFieldNamed) {
     EXPECT_STREQ(r.field, k.field);
     EXPECT_EQ(sim.start(M3::Identity(), V2::Zero()), Status::kNotConfigured) << k.field;
   }
+}
+
+TEST(SimulatedGyroConfigure, GivenTheGimbalPlantThenReportOnlyFieldsAndUnresolvableSpinFailuresAreRefused) {
+  Config c = SeekerExample<double>::stub();
+  ASSERT_EQ(c.plant, PlantKind::kGimbal);
+  Sim sim;
+  ASSERT_TRUE(sim.configure(c).ok());
+  c.spin_down_time_constant_s = 20.0;  // the report plant's: never silently ignored
+  ConfigCheck r = sim.configure(c);
+  EXPECT_EQ(r.status, Status::kOutOfRange);
+  EXPECT_STREQ(r.field, "spin_down_time_constant_s");
+  c = SeekerExample<double>::stub();
+  c.faults[2] = {FaultKind::kSpinMotorFailure, 5, 0, -1, 1e-300};  // faster than the sub-steps resolve
+  r = sim.configure(c);
+  EXPECT_EQ(r.status, Status::kOutOfRange);
+  EXPECT_STREQ(r.field, "faults[2].magnitude");
+  c.faults[2].magnitude = 0.3;
+  EXPECT_TRUE(sim.configure(c).ok());
 }
 
 TEST(SimulatedGyroConfigure, GivenRefusedReconfigurationThenTheRunningGyroIsUntouched) {

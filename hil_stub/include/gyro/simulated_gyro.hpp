@@ -92,6 +92,9 @@ template <typename T>
   } else {
     const ConfigCheck g = check(c.gimbal);
     if (!g.ok()) return g;
+    // The report plant's spin-down: the gimbal plant runs down with gimbal.spin_drive kFree
+    // (refused rather than ignored).
+    if (c.spin_down_time_constant_s != T(0)) return {Status::kOutOfRange, "spin_down_time_constant_s"};
   }
   if (!std::isfinite(c.tick_s)) return {Status::kNonFiniteInput, "tick_s"};
   if (!(c.tick_s > T(0))) return {Status::kNonPositiveStep, "tick_s"};

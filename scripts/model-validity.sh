@@ -20,6 +20,6 @@ cat >> docs/model-validity.md <<'MD'
 
 Left: the worst gimbal-angle error over 1 s, open loop, at a body turn of 1 rad/s, for the
 report's model and the corrected one. Right: the component's worst residual, from uncaging on
-and in steady slews, at the same turn; the dashed line is the Done-when's 2e-4 rad.
+and in steady slews, at the same turn; the dashed line is the acceptance bound of 2e-4 rad.
 MD
 echo "wrote docs/model-validity.md, docs/img/model_validity.png"

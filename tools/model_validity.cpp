@@ -26,7 +26,7 @@ constexpr double kScan = 0.3;                              // rad/s along the co
 constexpr double kResidualGoal = 2e-4;                     // rad
 constexpr double kSlewGoal = 0.01;                         // of the command
 
-// The Done-when envelope: cone up to 20 deg, turn up to 1 rad/s, roll up to 10 rad/s.
+// The acceptance envelope: cone up to 20 deg, turn up to 1 rad/s, roll up to 10 rad/s.
 bool in_envelope(double cone_deg, double turn, double roll) { return cone_deg <= 20 && turn <= 1 && roll <= 10; }
 
 struct Row {
@@ -78,7 +78,7 @@ std::string table(const std::vector<Row>& rows, Cell cell) {
 const char* kIntro = R"(# Model validity: the report's model, the corrected model and the component against the gimbal
 
 Regenerate with `scripts/model-validity.sh` (`tools/model_validity.cpp`, the runs in
-`tools/validity_envelope.hpp`; the Done-when corners are `tests/model_validity_test.cpp`).
+`tools/validity_envelope.hpp`; the acceptance corners are `tests/model_validity_test.cpp`).
 
 The reference is the SIL stub's nonlinear gimbal plant (`docs/gimbal-plant.md`): the seeker
 example (`SeekerExample`: H = 0.0754 N m s, 600 Hz nutation, 2 kHz tick, friction 4e-4 N m s
@@ -112,7 +112,7 @@ yaw but not its roll (the body rolls round it, as round a seeker's line of sight
   each tick against the rate the component flew from the tick before (2-norms, relative to
   the command where it is at least 0.05 rad/s).
 
-Cells in **bold** are inside the envelope of the Done-when (cone up to 20 deg, turn up to
+Cells in **bold** are inside the acceptance envelope (cone up to 20 deg, turn up to
 1 rad/s, roll up to 10 rad/s). Letters after a closed-loop figure say what happened: F the
 component went to safe mode, S the plant was on its stop, L the component flagged the gimbal
 limit, P it withheld a command toward the stop (and flagged it), T it flagged its torquer
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  // The Done-when figures over its envelope.
+  // The acceptance figures over its envelope.
   double worst_res = 0, worst_res_window = 0, worst_slew = 0, worst_caged = 0;
   const Row* at_res = nullptr;
   int faults_inside = 0, contacts_inside = 0, cases_inside = 0;
@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
   }
 
   std::string md = kIntro;
-  md += "\n## The Done-when envelope\n\n";
+  md += "\n## The acceptance envelope\n\n";
   md += fmt("%.0f cases (cone 0-20 deg, turn 0-1 rad/s, roll 0-10 rad/s of the grid below):\n\n", static_cast<double>(cases_inside));
   md += "| figure | measured | goal |\n|---|---|---|\n";
   md += fmt("| cases with a residual fault or safe mode | %.0f | 0 |\n", static_cast<double>(faults_inside));

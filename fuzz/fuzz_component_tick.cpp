@@ -433,7 +433,9 @@ void run(Bytes& in, std::uint8_t head) {
     const gyro::Vector2<T>& w = port.torque;
     GYRO_FUZZ_CHECK(finite_coeffs(w));
     GYRO_FUZZ_CHECK(w.cwiseAbs().maxCoeff() <= cfg.max_torque * (T(1) + T(4) * std::numeric_limits<T>::epsilon()));
-    if (to == GyroMode::kUncaging || to == GyroMode::kFault) GYRO_FUZZ_CHECK(w.isZero(T(0)));
+    // Torquers off: at once in safe mode; while uncaging once the torque shaper has emptied
+    // (at most 2 x 8 ticks of it).
+    if (to == GyroMode::kFault || (to == GyroMode::kUncaging && uncaging_ticks >= 16)) GYRO_FUZZ_CHECK(w.isZero(T(0)));
     if (script.port.write_status == PortStatus::kOk) held = w;
     GYRO_FUZZ_CHECK(same_bits(after.torque_cmd, held));
 

@@ -155,12 +155,18 @@ TEST(ComponentClosedLoop, GivenCommandBeyondLimitsThenClampedPerAxisAndTorqueSat
   sil.guidance.slew_rate_cmd_rad_s = Vector2<double>(-0.9, 0.9);
   ASSERT_EQ(sil.step(), Status::kOk);
   EXPECT_EQ(sil.tm().rate_cmd_rad_s, Vector2<double>(-0.2, 0.5));
+  EXPECT_NE(sil.tm().flags & kSlewRateLimited, 0u);
   EXPECT_NE(sil.tm().flags & kTorquerSaturated, 0u);
+  // The torque shaper (one tick of spacing at this rotor) reaches the law's torque on the
+  // third tick of the same command.
+  ASSERT_EQ(sil.step(), Status::kOk);
+  ASSERT_EQ(sil.step(), Status::kOk);
   EXPECT_NEAR(sil.tm().torque_cmd.cwiseAbs().maxCoeff(), 0.02, 1e-15);
   // Direction kept: torque proportional to the unsaturated law's (f w1 + H w2, f w2 - H w1).
   const double h = angular_momentum(400.0, 3e-5), f = 4e-4;
   const Vector2<double> full(f * -0.2 + h * 0.5, f * 0.5 - h * -0.2);
-  EXPECT_NEAR(sil.tm().torque_cmd(0) * full(1) - sil.tm().torque_cmd(1) * full(0), 0.0, 1e-15);
+  // (Three ticks on, the gimbal has moved by 1e-9 rad: a per-axis clip would be off by 1e-4.)
+  EXPECT_NEAR(sil.tm().torque_cmd(0) * full(1) - sil.tm().torque_cmd(1) * full(0), 0.0, 1e-12);
 }
 
 // A torque limit so small that max_torque / |torque| is subnormal: scaling by that ratio lost
@@ -174,9 +180,11 @@ TEST(ComponentClosedLoop, GivenATinyTorqueLimitThenTheSaturatedTorqueNeverExceed
   ASSERT_TRUE(sil.uncage());
   for (const Vector2<double>& cmd : {Vector2<double>(-24448.0, 1.0), Vector2<double>(3.0, -7.0)}) {
     sil.guidance.slew_rate_cmd_rad_s = cmd;
-    ASSERT_EQ(sil.step(), Status::kOk);
-    EXPECT_NE(sil.tm().flags & kTorquerSaturated, 0u);
-    EXPECT_LE(sil.tm().torque_cmd.cwiseAbs().maxCoeff(), c.max_torque) << cmd.transpose();
+    for (int k = 0; k < 3; ++k) {  // the shaper's taps all on this command by the third tick
+      ASSERT_EQ(sil.step(), Status::kOk);
+      EXPECT_NE(sil.tm().flags & kTorquerSaturated, 0u);
+      EXPECT_LE(sil.tm().torque_cmd.cwiseAbs().maxCoeff(), c.max_torque) << cmd.transpose();
+    }
     EXPECT_EQ(sil.tm().torque_cmd.cwiseAbs().maxCoeff(), c.max_torque) << "saturated onto the limit";
   }
 }

@@ -42,8 +42,8 @@ std::string fmt(const char* f, double v) {
 }
 
 // What the component did that a clean run does not: F safe mode (fault), S on the stop,
-// L gimbal-limit flag, P stop protection withheld a command, T torquer saturated, R the rate
-// limit cut guidance's command.
+// L gimbal-limit flag, P stop protection withheld a command, T torquer saturated, R the
+// slew-rate limit cut the command (each flagged by the component).
 std::string marks(const ClosedLoopResult& c) {
   std::string m;
   if (c.fault) m += "F";
@@ -51,7 +51,7 @@ std::string marks(const ClosedLoopResult& c) {
   if ((c.flags_seen & gyro::kGimbalLimit) != 0u) m += "L";
   if ((c.flags_seen & gyro::kGimbalStopProtect) != 0u) m += "P";
   if (c.saturated_ticks > 0) m += "T";
-  if (c.clipped_ticks > 0) m += "R";
+  if ((c.flags_seen & gyro::kSlewRateLimited) != 0u) m += "R";
   return m.empty() ? "" : " " + m;
 }
 
@@ -116,8 +116,8 @@ Cells in **bold** are inside the acceptance envelope (cone up to 20 deg, turn up
 1 rad/s, roll up to 10 rad/s). Letters after a closed-loop figure say what happened: F the
 component went to safe mode, S the plant was on its stop, L the component flagged the gimbal
 limit, P it withheld a command toward the stop (and flagged it), T it flagged its torquer
-saturated, R the slew-rate limit cut guidance's command (guidance asked more than the
-component may fly: not flagged by the component).
+saturated, R it cut the command to its slew-rate limit and flagged it (guidance, or while
+caged the body, asked more than the component may fly).
 
 ## Reading the tables
 
@@ -126,36 +126,33 @@ component may fly: not flagged by the component).
   soon as the body rolls (its torquer axes never roll). The corrected model stays within
   2.3e-4 rad inside the envelope and 4.8e-4 rad over the whole grid: what is left is the
   gimbal rings' inertia and the held torque's picture of axes that turn within a tick.
-- In steady slews the component's residual stays under 1e-4 rad over the grid, except at a
-  centred spin axis (cone 0) turning with 20 rad/s of roll (6e-4 rad) and where the stop
-  protection withholds commands near the stop (P: up to 1.1e-3 rad, the withheld command
-  switching the torque on and off excites the nutation; the slew-rate error there, up to
-  280 %, measures that nutation, not a slew).
-- The slew-rate error grows with roll and cone: 2.4 % at a 20 deg cone and 20 rad/s of roll,
-  7 % at 25 deg. Most of it is the spin motor's reaction, which the torque law does not hold
-  off (`docs/gimbal-geometry.md`, "Spin motor"; with a free-running rotor in the plant the
-  same case gives 0.7 %); the rest is the gimbal rings' inertia.
-- From the uncaging request on, the worst residual is set by transients, not by the steady
-  state: (a) at the uncaging request on a turning body: electrical caging leaves the rotor
-  nutating (the cage loop feeds the pickoffs back a tick late, which damps the 600 Hz
-  nutation slowly: 3e-4 rad still at 0.2 s with 1 rad/s of turn and 10 rad/s of roll), and
-  the estimator, restarted at uncaging from the body's rate, cannot know that nutation;
-  (b) in the first 100 ms of a slew at high roll, while the command turns quickly on the
-  gimbal axes: the torque held over a tick is then a coarse picture of the torque the gimbal
-  feels (at cone 5 deg and 10 rad/s of roll, halving the tick takes this peak from 2.0e-4
-  to 1.2e-5 rad). Both stay far under the residual limit (2e-3 rad) and decay in tens of
-  milliseconds.
+- The component's residual stays under 1e-4 rad inside the envelope from the uncaging
+  request on, transients included (worst 8.7e-5 rad at a 20 deg cone, 1 rad/s of turn,
+  10 rad/s of roll, in the steady slew), and under 5e-4 rad over the whole grid wherever the
+  gimbal stays off its stop. Two things make the transients as small as the steady state:
+  the torque shaper (docs/component.md, "Torque shaping against nutation"), without which a
+  step of torque into a slew left a nutation that drifted out of phase with the estimator's
+  (4.1e-4 rad at a centred spin axis, 1 rad/s of turn, 5 rad/s of roll), and the estimator
+  started afresh at uncaging from the body's rate, which the shaped cage loop now leaves
+  true to within 2e-5 rad. Where the stop protection withholds commands near the stop (P)
+  the withheld command switches the torque on and off; the slew-rate error there measures
+  that, not a slew.
+- The slew-rate error grows with roll and cone: 2.5 % at a 20 deg cone and 20 rad/s of roll,
+  5.9 % at 25 deg. Most of it is the spin motor's reaction, which the torque law does not
+  hold off (`docs/gimbal-geometry.md`, "Spin motor"); the rest is the gimbal rings' inertia.
 - The power-up on a turning body (last line of the first table): the rotor is released with
   the gimbals at rest on a body turning at up to 2 rad/s, with no torque: it nutates by
-  |wb| / beta, and the estimator, started a tick later from the body's rate, misses it.
+  |wb| / beta, and the estimator, started a tick later from the body's rate, misses it until
+  friction damps it (alpha = 20 1/s); uncaging waits 0.2 s.
 - Beyond the envelope, a body turning at 1.5-2 rad/s across body x asks 1.06-1.41 rad/s on
   each gimbal axis: more than the slew-rate limit (1 rad/s per axis) and, at 2 rad/s, more
-  than the torquer's authority (1.33 rad/s). With little roll the gimbal drifts onto the
-  stop: the component flags the gimbal limit first (45-510 ms before the stop), never
-  commands toward the stop (it withholds outward commands near it), and latches a residual
-  fault 10-16 ms after the plant hits it. The cut of guidance's command by the rate limit
-  (R) is not flagged. Fast roll turns the body's rate across the spin axis round the gimbal
-  axes and averages it out: from 5 rad/s of roll on, these cases follow.
+  than the torquer's authority (1.33 rad/s). The component cuts the command to its limit and
+  flags it (`slew_rate_limited`, R) from the first such tick; with little roll the gimbal
+  then drifts onto the stop: the component flags the gimbal limit 90-1,030 ticks before the
+  stop, never commands toward the stop (it withholds outward commands near it) and latches
+  a residual fault 20-31 ticks after the plant hits it (the table below). Fast roll turns
+  the body's rate across the spin axis round the gimbal axes and averages it out: from
+  5 rad/s of roll on, these cases follow.
 )";
 
 }  // namespace

@@ -54,8 +54,9 @@ enum ComponentFlag : std::uint32_t {
   kTickInvalid = 1u << 15,       // tick count repeated, went back or jumped too far: one tick
   kNotActive = 1u << 16,         // step() before activate(): refused (nothing else changes)
   kInputFault = 1u << 17,        // unusable guidance input (commands, tick) for long enough
+  kSlewRateLimited = 1u << 18,   // the rate wanted (slew, or caging on the body) cut to its limit
 };
-inline constexpr int kComponentFlagCount = 18;
+inline constexpr int kComponentFlagCount = 19;
 
 // The name of a flag bit as logs and CSV files spell it ("pickoff_invalid"); "" if none.
 [[nodiscard]] constexpr const char* flag_name(int bit) noexcept {
@@ -64,7 +65,7 @@ inline constexpr int kComponentFlagCount = 18;
       "pickoff_stale",   "pickoff_jump",         "residual_fault",      "torquer_saturated",
       "spin_low",        "torquer_write_failed", "nav_invalid",         "command_rejected",
       "tick_skipped",    "gimbal_stop_protect",  "fault_latched",       "tick_invalid",
-      "not_active",      "input_fault"};
+      "not_active",      "input_fault",          "slew_rate_limited"};
   return (bit >= 0 && bit < kComponentFlagCount) ? kNames[bit] : "";
 }
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -24,7 +25,7 @@ namespace gyro {
 template <typename T>
 class GyroComponent {
  public:
-  explicit GyroComponent(GyroPort<T>& port) noexcept : port_(port) {}
+  explicit GyroComponent(GyroPort<T>& port) noexcept : port_(port) { wanted_history_.fill(Vector2<T>::Zero()); }
 
   // Validates and stores the configuration; only while idle (before activate()).
   [[nodiscard]] ConfigCheck configure(const GyroComponentConfig<T>& config) noexcept {
@@ -37,6 +38,7 @@ class GyroComponent {
     config_ = config;
     estimator_ = est;
     cos_protect_ = std::cos(config.gimbal_cone_limit_rad - config.gimbal_stop_margin_rad);
+    nutation_spin_ = T(-1);  // the nutation and the shaper follow the new rotor
     configured_ = true;
     return c;
   }
@@ -74,7 +76,7 @@ class GyroComponent {
 
     const GimbalFrame<T> frame = frame_now();
     const Vector2<T> rate_cmd = rate_command(frame, nav_ok, r.accepted, flags);
-    const Vector2<T> torque = torque_command(frame, rate_cmd, spin, nav_ok, flags);
+    const Vector2<T> torque = shape_torque(torque_command(frame, rate_cmd, spin, nav_ok, flags), spin);
     if (port_.write_torquer(torque) == PortStatus::kOk) {
       torque_held_ = torque;
       torquer_fail_ = false;
@@ -277,7 +279,8 @@ class GyroComponent {
       case GyroMode::kCaged:
         if (request == ModeRequest::kUncage && measurable) {
           // The report's uncaging: rates from the body, attitude from the body plus the
-          // measured gimbal offset.
+          // measured gimbal offset. (The torque shaper keeps the cage loop's torques from
+          // leaving a nutation this start cannot know.)
           if (start_estimator()) {
             estimator_ready_ = true;
             residual_.setZero();
@@ -342,7 +345,9 @@ class GyroComponent {
         }
       }
     }
-    return Vector2<T>(clamp(w(0), config_.max_pitch_rate_rad_s), clamp(w(1), config_.max_yaw_rate_rad_s));
+    Vector2<T> limited(clamp(w(0), config_.max_pitch_rate_rad_s), clamp(w(1), config_.max_yaw_rate_rad_s));
+    if (limited != w) flags |= kSlewRateLimited;  // guidance (or the body) asks more than may be flown
+    return limited;
   }
 
   // The torque law (gyro/gimbal_geometry.hpp): torquer commands that hold the spin axis at the
@@ -378,6 +383,30 @@ class GyroComponent {
     return torque;
   }
 
+  // A step of torque sets the rotor nutating (amplitude dT / (H beta)), and the plant's
+  // nutation then drifts out of phase with the estimator's (the gimbal's inertias change with
+  // its angles, the rotor's momentum with the inner gimbal's roll). So the torque written is
+  // the torque law's through a three-tap filter with a zero at the nutation frequency:
+  //   a w[k] + (1 - 2a) w[k-m] + a w[k-2m],  a = 1 / (2 (1 - cos(m beta dt))),
+  // m the fewest ticks with m beta dt >= pi/2 (so all taps are >= 0 and the torque never
+  // exceeds the law's largest), m ticks of delay: a step excites no nutation at beta. Off when
+  // the tick aliases the nutation or m would pass kShaperMaxSpacing; safe mode cuts at once.
+  [[nodiscard]] Vector2<T> shape_torque(const Vector2<T>& wanted, T spin) noexcept {
+    if (mode_ == GyroMode::kFault) {
+      wanted_history_.fill(Vector2<T>::Zero());  // leaving safe mode starts from rest
+      return wanted;
+    }
+    wanted_head_ = (wanted_head_ + 1u) % kShaperLength;
+    wanted_history_[wanted_head_] = wanted;
+    if (nutation_beta(spin) <= T(0) || shaper_spacing_ == 0u) return wanted;
+    const Vector2<T>& mid = wanted_history_[(wanted_head_ + kShaperLength - shaper_spacing_) % kShaperLength];
+    const Vector2<T>& old = wanted_history_[(wanted_head_ + kShaperLength - 2u * shaper_spacing_) % kShaperLength];
+    // Written about the middle tap (equal taps give it back exactly); rounding can still pass
+    // the limit by an ulp, hence the clamp.
+    const Vector2<T> out = mid + shaper_edge_ * ((wanted - mid) + (old - mid));
+    return Vector2<T>(clamp(out(0), config_.max_torque), clamp(out(1), config_.max_torque));
+  }
+
   void count(std::uint32_t flags) noexcept {
     for (int i = 0; i < kComponentFlagCount; ++i) {
       if ((flags & (1u << static_cast<unsigned>(i))) != 0u) {
@@ -405,17 +434,30 @@ class GyroComponent {
     t.spin_hz = spin;
   }
 
-  // Fewer than two ticks per nutation period: the pickoffs alias the nutation.
-  [[nodiscard]] bool nutation_unresolved(T spin) noexcept {
+  // The nutation frequency at this spin (0 if the modes cannot be computed); kept for the
+  // last spin, as the spin readback rarely changes.
+  [[nodiscard]] T nutation_beta(T spin) noexcept {
     if (!(spin == nutation_spin_)) {
       const RotorParameters<T> p{config_.pitch_inertia, config_.yaw_inertia, config_.friction,
                                  angular_momentum(spin, config_.spin_inertia)};
       RotorModes<T> m;
       nutation_beta_ = (compute_modes(p, m) == Status::kOk) ? m.beta_rad_s : T(0);
       nutation_spin_ = spin;
+      const T per_tick = nutation_beta_ * config_.tick_s;  // nutation phase a tick
+      shaper_spacing_ = 0u;
+      if (per_tick > T(0) && per_tick < kPi<T>) {
+        const T spacing = std::ceil(kPi<T> / (T(2) * per_tick));
+        if (spacing <= T(kShaperMaxSpacing)) {
+          shaper_spacing_ = static_cast<std::uint32_t>(spacing);
+          shaper_edge_ = T(1) / (T(2) * (T(1) - std::cos(spacing * per_tick)));
+        }
+      }
     }
-    return nutation_beta_ * config_.tick_s > kPi<T>;
+    return nutation_beta_;
   }
+
+  // Fewer than two ticks per nutation period: the pickoffs alias the nutation.
+  [[nodiscard]] bool nutation_unresolved(T spin) noexcept { return nutation_beta(spin) * config_.tick_s > kPi<T>; }
 
   GyroPort<T>& port_;
   GyroComponentConfig<T> config_{};
@@ -448,6 +490,13 @@ class GyroComponent {
   std::uint32_t settle_ticks_{0};
   T nutation_spin_{-1};
   T nutation_beta_{};
+  // The torque shaper (shape_torque): the torque law's last 2 kShaperMaxSpacing + 1 outputs.
+  static constexpr std::uint32_t kShaperMaxSpacing = 8;
+  static constexpr std::uint32_t kShaperLength = 2u * kShaperMaxSpacing + 1u;
+  std::array<Vector2<T>, kShaperLength> wanted_history_{};
+  std::uint32_t wanted_head_{0};
+  std::uint32_t shaper_spacing_{0};  // m; 0: not shaped
+  T shaper_edge_{};                  // a
   GyroTelemetry<T> telemetry_{};
 };
 

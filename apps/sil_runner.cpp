@@ -12,6 +12,7 @@
 #include "body_motion.hpp"
 #include "flight_computer.hpp"
 #include "gyro/gyro_component.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "pil_flight.hpp"
 #include "scenario_limits.hpp"
@@ -349,32 +350,33 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     b.specific_force = body.specific_force().cast<T>();
     return b;
   };
-  const Status started = stub.start(sample());
-  if (started != Status::kOk) throw RunError(std::string("SimulatedGyro::start refused: ") + to_string(started));
-  const Status active = comp.activate();
-  if (active != Status::kOk) throw RunError(std::string("GyroComponent::activate refused: ") + to_string(active));
+  SilLoop<T, FlightComputer<T>> loop(stub, comp);
+  const SilStatus<Status> started = loop.start(sample());
+  if (started.stub != Status::kOk) {
+    throw RunError(std::string("SimulatedGyro::start refused: ") + to_string(started.stub));
+  }
+  if (started.component != Status::kOk) {
+    throw RunError(std::string("GyroComponent::activate refused: ") + to_string(started.component));
+  }
   Status last_step = Status::kOk;  // held over the ticks a processor in the loop skipped
 
   observer.set_extra_columns(comp.extra_columns(), [&comp](CsvWriter& w) { comp.write_extras(w); });
   observer.on_start();
   TickRecord rec;
   for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
-    if (k > 0) {
-      body.advance();
-      const Status st = stub.advance(k, sample());
-      if (st != Status::kOk) {
-        throw RunError("tick " + std::to_string(k) + ": SimulatedGyro::advance refused: " + to_string(st));
-      }
+    if (k > 0) body.advance();
+    GuidanceCommand<T> command;
+    command.request = guidance.at(k);
+    command.slew_rate_cmd_rad_s = v2<T>(guidance.slew());
+    command.nav_valid = guidance.nav_valid();
+    const SilStatus<std::optional<Status>> ran = loop.tick(k, sample(), command);
+    if (ran.stub != Status::kOk) {
+      throw RunError("tick " + std::to_string(k) + ": SimulatedGyro::advance refused: " + to_string(ran.stub));
     }
-    GuidanceInput<T> in;
-    in.request = guidance.at(k);
-    in.slew_rate_cmd_rad_s = v2<T>(guidance.slew());
-    in.nav_valid = guidance.nav_valid();
-    in.R_earth_to_body = body.R_earth_to_body().cast<T>();
-    in.body_rate_rad_s = body.rate_rad_s().cast<T>();
-    const std::optional<Status> ran = comp.step(k, in);
-    if (ran && *ran != Status::kOk && *ran != Status::kInputIgnored) ++sum.refused_steps;
-    const Status step = ran.value_or(last_step);
+    if (ran.component && *ran.component != Status::kOk && *ran.component != Status::kInputIgnored) {
+      ++sum.refused_steps;
+    }
+    const Status step = ran.component.value_or(last_step);
     last_step = step;
 
     const GyroTelemetry<T>& tm = comp.telemetry();
@@ -391,7 +393,7 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     rec.tick = k;
     rec.t_s = body.time_s();
     rec.mode = tm.mode;
-    rec.request = in.request;
+    rec.request = command.request;
     rec.flags = tm.flags;
     rec.gimbal_true_rad = truth_angle.template cast<double>();
     rec.gimbal_measured_rad = tm.gimbal_measured_rad.template cast<double>();
@@ -401,7 +403,8 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     rec.rate_true_rad_s = truth_rate.template cast<double>();
     rec.rate_cmd_rad_s = tm.rate_cmd_rad_s.template cast<double>();
     // What guidance and the body sent, in double (the component received them in T). Read
-    // back from `in` in a float run, GCC 12.2's SLP vectoriser at -O2 drops the float rounding.
+    // back from the input in a float run, GCC 12.2's SLP vectoriser at -O2 drops the float
+    // rounding.
     rec.slew_cmd_rad_s = guidance.slew();
     rec.torque_cmd = tm.torque_cmd.template cast<double>();
     rec.nutation_est_rad = tm.nutation_amplitude_rad.template cast<double>();

@@ -15,9 +15,26 @@
 
 #include "gyro/gyro_component.hpp"
 #include "gyro/seeker_example.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace {
+
+// The component with callgrind's collection on around its step, from tick `from` on.
+template <typename T>
+struct CountedComponent {
+  gyro::GyroComponent<T>& component;
+  std::uint64_t from;
+
+  [[nodiscard]] gyro::Status activate() noexcept { return component.activate(); }
+  [[nodiscard]] gyro::Status step(std::uint64_t tick, const gyro::GuidanceInput<T>& in) noexcept {
+    const bool counted = tick >= from;
+    if (counted) CALLGRIND_TOGGLE_COLLECT;
+    const gyro::Status st = component.step(tick, in);
+    if (counted) CALLGRIND_TOGGLE_COLLECT;
+    return st;
+  }
+};
 
 template <typename T>
 int run(bool spin_down, long ticks) {
@@ -29,27 +46,27 @@ int run(bool spin_down, long ticks) {
   }
   SimulatedGyro<T> stub;
   GyroComponent<T> comp(stub);
-  Matrix3<T> R = Matrix3<T>::Identity();
-  const Vector3<T> body_rate(T(2), T(0.2), T(-0.1));  // roll, pitch, yaw (rad/s)
-  if (!stub.configure(s).ok() || stub.start(R, Vector2<T>(body_rate(1), body_rate(2))) != Status::kOk) return 2;
-  if (!comp.configure(SeekerExample<T>::component()).ok() || comp.activate() != Status::kOk) return 3;
-  const T dt = SeekerExample<T>::kTick;
-  const Matrix3<T> turn = frame_rotation_z(body_rate(2) * dt) * frame_rotation_y(body_rate(1) * dt);
-  GuidanceInput<T> in;
-  in.nav_valid = true;
-  in.body_rate_rad_s = body_rate;
+  CountedComponent<T> counted{comp, 601};  // caged, uncaged and settled first: the free-flight tick
+  SilLoop<T, CountedComponent<T>> loop(stub, counted, StubBodyFeed::kAttitude);
+  const Vector2<T> pitch_yaw_rate(T(0.2), T(-0.1));
+  // The stub's body turns in pitch and yaw; the component is also told of a 2 rad/s roll.
+  BodySample<T> body = turning_body(Matrix3<T>(Matrix3<T>::Identity()), pitch_yaw_rate);
+  body.rate_rad_s(0) = T(2);
+  if (!stub.configure(s).ok()) return 2;
+  if (!comp.configure(SeekerExample<T>::component()).ok()) return 3;
+  const SilStatus<Status> started = loop.start(body);
+  if (started.stub != Status::kOk) return 2;
+  if (started.component != Status::kOk) return 3;
+  const Matrix3<T> turn = pitch_then_yaw_turn(pitch_yaw_rate, SeekerExample<T>::kTick);
+  GuidanceCommand<T> command;
+  command.slew_rate_cmd_rad_s = Vector2<T>(T(0.3), T(-0.2));
   long failures = 0;
   for (long k = 1; k <= ticks + 600; ++k) {
-    R = turn * R;
-    if (stub.advance(static_cast<std::uint64_t>(k), R, Vector2<T>::Zero()) != Status::kOk) return 4;
-    in.R_earth_to_body = R;
-    in.request = (k == 50) ? ModeRequest::kUncage : ModeRequest::kNone;
-    in.slew_rate_cmd_rad_s = Vector2<T>(T(0.3), T(-0.2));
-    const bool counted = k > 600;  // caged, uncaged and settled first: the free-flight tick
-    if (counted) CALLGRIND_TOGGLE_COLLECT;
-    const Status st = comp.step(static_cast<std::uint64_t>(k), in);
-    if (counted) CALLGRIND_TOGGLE_COLLECT;
-    if (st != Status::kOk) ++failures;
+    body.R_earth_to_body = turn * body.R_earth_to_body;
+    command.request = (k == 50) ? ModeRequest::kUncage : ModeRequest::kNone;
+    const SilStatus<Status> ran = loop.tick(static_cast<std::uint64_t>(k), body, command);
+    if (ran.stub != Status::kOk) return 4;
+    if (ran.component != Status::kOk) ++failures;
   }
   std::printf("%ld ticks counted, mode %s, %ld calls not kOk\n", ticks, to_string(comp.mode()), failures);
   return 0;

@@ -11,6 +11,7 @@
 #include "gyro/gyro_component.hpp"
 #include "gyro/persistence.hpp"
 #include "gyro/seeker_example.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "support/corrupting_port.hpp"
 #include "support/sil_fixture.hpp"
@@ -27,11 +28,28 @@ constexpr std::uint32_t kIgnoredInput = kCommandRejected | kTickInvalid;
 
 // The component behind a corrupting wire to the SIL stub; the body turns slowly. `tick` is
 // the true tick (the stub's); each call may hand the component another count.
+// The component as the loop calls it, handed the test's tick count and input instead of the
+// loop's, or not called at all (a tick lost).
+template <typename T>
+struct TamperedComponent {
+  GyroComponent<T>& component;
+  std::uint64_t count{0};
+  GuidanceInput<T> input{};
+  bool skip{false};
+
+  [[nodiscard]] Status activate() noexcept { return component.activate(); }
+  [[nodiscard]] Status step(std::uint64_t /*tick*/, const GuidanceInput<T>& /*in*/) noexcept {
+    return skip ? Status::kOk : component.step(count, input);
+  }
+};
+
 template <typename T>
 struct Rig {
   SimulatedGyro<T> gyro;
   CorruptingPort<T> wire{gyro};
   GyroComponent<T> component{wire};
+  TamperedComponent<T> tampered{component};
+  SilLoop<T, TamperedComponent<T>> loop{gyro, tampered, StubBodyFeed::kAttitude};
   GuidanceInput<T> guidance;
   Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};
   Vector3<T> body_rate{T(0), T(0.05), T(-0.04)};
@@ -40,21 +58,18 @@ struct Rig {
 
   bool start() {
     guidance.nav_valid = true;
-    return gyro.configure(SeekerGyro<T>::stub()).ok() &&
-           gyro.start(R_earth_to_body, Vector2<T>(body_rate(1), body_rate(2))) == Status::kOk &&
-           component.configure(SeekerGyro<T>::component()).ok() && component.activate() == Status::kOk;
+    if (!gyro.configure(SeekerGyro<T>::stub()).ok() || !component.configure(SeekerGyro<T>::component()).ok()) {
+      return false;
+    }
+    const SilStatus<Status> started = loop.start(turning_body(R_earth_to_body, pitch_yaw()));
+    return started.stub == Status::kOk && started.component == Status::kOk;
   }
 
   // The world moves one tick; the component is called with `g` (its tick count, request,
   // commands and navigation as given: the test corrupts them).
-  Status step_with(std::uint64_t count, GuidanceInput<T> g) {
-    const T dt = SeekerGyro<T>::kTick;
-    R_earth_to_body = frame_rotation_z(body_rate(2) * dt) * frame_rotation_y(body_rate(1) * dt) * R_earth_to_body;
-    ++tick;
-    EXPECT_EQ(gyro.advance(tick, R_earth_to_body, Vector2<T>::Zero()), Status::kOk);
-    ever_at_stop = ever_at_stop || gyro.at_gimbal_stop();
-    return component.step(count, g);
-  }
+  Status step_with(std::uint64_t count, GuidanceInput<T> g) { return world_tick(count, g, false); }
+  // The world moves one tick; the component is not called.
+  Status lose_tick() { return world_tick(0, good_guidance(), true); }
   // A good tick: the true count and navigation.
   Status step(ModeRequest request = ModeRequest::kNone) {
     GuidanceInput<T> g = good_guidance();
@@ -64,10 +79,24 @@ struct Rig {
   [[nodiscard]] GuidanceInput<T> good_guidance() const {
     GuidanceInput<T> g = guidance;
     g.nav_valid = true;
-    g.R_earth_to_body = frame_rotation_z(body_rate(2) * SeekerGyro<T>::kTick) *
-                        frame_rotation_y(body_rate(1) * SeekerGyro<T>::kTick) * R_earth_to_body;
+    g.R_earth_to_body = next_attitude();
     g.body_rate_rad_s = body_rate;
     return g;
+  }
+  [[nodiscard]] Vector2<T> pitch_yaw() const { return Vector2<T>(body_rate(1), body_rate(2)); }
+  [[nodiscard]] Matrix3<T> next_attitude() const {
+    return pitch_then_yaw_turn(pitch_yaw(), SeekerGyro<T>::kTick) * R_earth_to_body;
+  }
+  Status world_tick(std::uint64_t count, const GuidanceInput<T>& g, bool skip) {
+    R_earth_to_body = next_attitude();
+    ++tick;
+    tampered.count = count;
+    tampered.input = g;
+    tampered.skip = skip;
+    const SilStatus<Status> ran = loop.tick(tick, turning_body(R_earth_to_body, pitch_yaw()), GuidanceCommand<T>{});
+    EXPECT_EQ(ran.stub, Status::kOk);
+    ever_at_stop = ever_at_stop || gyro.at_gimbal_stop();
+    return ran.stub != Status::kOk ? ran.stub : ran.component;
   }
   void run(int ticks) {
     for (int k = 0; k < ticks; ++k) EXPECT_EQ(step(), Status::kOk) << k;
@@ -194,13 +223,7 @@ TEST(ComponentFailOperational, GivenAGapOfLostTicksThenItIsBridgedFlaggedAndTheR
     ASSERT_TRUE(rig.uncage());
     rig.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.5, -0.4);
     rig.run(50);
-    const double dt = SeekerGyro<double>::kTick;
-    for (std::uint64_t k = 1; k < gap; ++k) {  // the world moves, the component is not called
-      rig.R_earth_to_body = frame_rotation_z(rig.body_rate(2) * dt) * frame_rotation_y(rig.body_rate(1) * dt) *
-                            rig.R_earth_to_body;
-      ++rig.tick;
-      ASSERT_EQ(rig.gyro.advance(rig.tick, rig.R_earth_to_body, Vector2<double>::Zero()), Status::kOk);
-    }
+    for (std::uint64_t k = 1; k < gap; ++k) ASSERT_EQ(rig.lose_tick(), Status::kOk);  // the world moves
     ASSERT_EQ(rig.step(), Status::kOk);
     EXPECT_NE(rig.tm().flags & kTickSkipped, 0u);
     EXPECT_EQ(rig.tm().flags & kTickInvalid, 0u);

@@ -164,26 +164,24 @@ struct FaultyRig {
   SimulatedGyro<T> gyro;
   FaultyHarness<T> harness{gyro};
   GyroComponent<T> component{harness};
-  GuidanceInput<T> guidance;
+  SilLoop<T, GyroComponent<T>> loop{gyro, component, StubBodyFeed::kAttitude};
+  GuidanceCommand<T> guidance;
   Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};
   Vector2<T> body_rate{T(0.4), T(-0.3)};
   std::uint64_t tick{0};
 
   bool start() {
-    return gyro.configure(SeekerGyro<T>::stub()).ok() &&
-           gyro.start(R_earth_to_body, body_rate) == Status::kOk &&
-           component.configure(SeekerGyro<T>::component()).ok() && component.activate() == Status::kOk;
+    if (!gyro.configure(SeekerGyro<T>::stub()).ok() || !component.configure(SeekerGyro<T>::component()).ok()) {
+      return false;
+    }
+    const SilStatus<Status> started = loop.start(turning_body(R_earth_to_body, body_rate));
+    return started.stub == Status::kOk && started.component == Status::kOk;
   }
   Status step() {
-    const T dt = SeekerGyro<T>::kTick;
-    R_earth_to_body = frame_rotation_z(body_rate(1) * dt) * frame_rotation_y(body_rate(0) * dt) * R_earth_to_body;
+    R_earth_to_body = pitch_then_yaw_turn(body_rate, SeekerGyro<T>::kTick) * R_earth_to_body;
     ++tick;
-    const Status adv = gyro.advance(tick, R_earth_to_body, Vector2<T>::Zero());
-    if (adv != Status::kOk) return adv;
-    guidance.nav_valid = true;
-    guidance.R_earth_to_body = R_earth_to_body;
-    guidance.body_rate_rad_s = Vector3<T>(T(0), body_rate(0), body_rate(1));
-    return component.step(tick, guidance);
+    const SilStatus<Status> ran = loop.tick(tick, turning_body(R_earth_to_body, body_rate), guidance);
+    return ran.stub != Status::kOk ? ran.stub : ran.component;
   }
   [[nodiscard]] const GyroTelemetry<T>& tm() const { return component.telemetry(); }
 };

@@ -57,6 +57,20 @@ template class SimulatedGyro<float>;   // NOLINT(cppcoreguidelines-virtual-class
 template class SimulatedGyro<double>;  // NOLINT(cppcoreguidelines-virtual-class-destructor)
 }  // namespace gyro
 
+#include "gyro/sil_loop.hpp"
+
+namespace gyro {
+template class SilLoop<float, GyroComponent<float>>;
+template class SilLoop<double, GyroComponent<double>>;
+template GuidanceInput<float> guidance_input<float>(const GuidanceCommand<float>&, const BodySample<float>&) noexcept;
+template GuidanceInput<double> guidance_input<double>(const GuidanceCommand<double>&,
+                                                      const BodySample<double>&) noexcept;
+template Matrix3<float> pitch_then_yaw_turn<float>(const Vector2<float>&, float) noexcept;
+template Matrix3<double> pitch_then_yaw_turn<double>(const Vector2<double>&, double) noexcept;
+template BodySample<float> turning_body<float>(const Matrix3<float>&, const Vector2<float>&) noexcept;
+template BodySample<double> turning_body<double>(const Matrix3<double>&, const Vector2<double>&) noexcept;
+}  // namespace gyro
+
 #include "gyro/link/byte_fifo.hpp"
 #include "gyro/link/byte_link.hpp"
 #include "gyro/link/cmsdk_apb_uart.hpp"

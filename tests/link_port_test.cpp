@@ -16,6 +16,7 @@
 #include "gyro/link/gyro_link_messages.hpp"
 #include "gyro/link/link_gyro_port.hpp"
 #include "gyro/seeker_example.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro {
@@ -204,8 +205,39 @@ TEST(CmsdkUart, GivenRegisterStatesThenTheDriverReadsWritesAndCountsOverrunsAsTh
   EXPECT_EQ(regs.intstatus, 0x2u);
 }
 
-// The component over the link (electronics side: the stub behind a decoder and an encoder)
-// against the component with the stub as its port: identical telemetry, tick for tick.
+// The component over the link, as the SIL loop calls it: the electronics side (the stub
+// behind a decoder and an encoder) sends the stub's conversion as a frame before the step and
+// hands the torque frames the component wrote to the stub after it.
+template <typename T>
+struct WiredComponent {
+  SimulatedGyro<T>& stub;
+  GyroComponent<T>& component;
+  Wire& wire;
+  link::FrameDecoder<link::GyroLinkMessages<T>> electronics{};
+  std::uint8_t seq{0};
+  bool link_ok{true};
+
+  [[nodiscard]] Status activate() { return component.activate(); }
+  [[nodiscard]] Status step(std::uint64_t k, const GuidanceInput<T>& in) {
+    PickoffReading<T> r;
+    link_ok = link_ok && stub.read_pickoffs(r) == PortStatus::kOk;
+    std::array<std::uint8_t, link::kGyroLinkFrameBytes<T>> buf{};
+    const std::size_t n = link::encode_frame(link::encode_pickoff(r, seq++), buf);
+    for (std::size_t i = 0; i < n; ++i) link_ok = link_ok && wire.rx().push(buf[i]);
+    const Status st = component.step(k, in);
+    for (std::uint8_t b; wire.tx().pop(b);) {
+      link_ok = link_ok && electronics.push(b);
+      for (link::GyroLinkFrame<T> f; electronics.next(f);) {
+        Vector2<T> t;
+        link_ok = link_ok && link::decode_torque(f, t) && stub.write_torquer(t) == PortStatus::kOk;
+      }
+    }
+    return st;
+  }
+};
+
+// The component over the link against the component with the stub as its port: identical
+// telemetry, tick for tick.
 template <typename T>
 void transparent_wire() {
   using Ex = SeekerExample<T>;
@@ -214,43 +246,25 @@ void transparent_wire() {
   Wire wire;
   LinkGyroPort<T> port(wire);
   GyroComponent<T> wired(port);
-  link::FrameDecoder<link::GyroLinkMessages<T>> electronics;
-  std::uint8_t seq = 0;
-  const Matrix3<T> R = Matrix3<T>::Identity();
-  for (SimulatedGyro<T>* s : {&direct_stub, &wired_stub}) {
-    ASSERT_TRUE(s->configure(Ex::stub()).ok());
-    ASSERT_EQ(s->start(R, Vector2<T>::Zero()), Status::kOk);
-  }
-  for (GyroComponent<T>* c : {&direct, &wired}) {
-    ASSERT_TRUE(c->configure(Ex::component()).ok());
-    ASSERT_EQ(c->activate(), Status::kOk);
-  }
-  GuidanceInput<T> in;
-  in.nav_valid = true;
+  WiredComponent<T> wired_side{wired_stub, wired, wire};
+  SilLoop<T, GyroComponent<T>> direct_loop(direct_stub, direct, StubBodyFeed::kAttitude);
+  SilLoop<T, WiredComponent<T>> wired_loop(wired_stub, wired_side, StubBodyFeed::kAttitude);
+  for (SimulatedGyro<T>* s : {&direct_stub, &wired_stub}) ASSERT_TRUE(s->configure(Ex::stub()).ok());
+  for (GyroComponent<T>* c : {&direct, &wired}) ASSERT_TRUE(c->configure(Ex::component()).ok());
+  const BodySample<T> body = turning_body(Matrix3<T>(Matrix3<T>::Identity()), Vector2<T>(Vector2<T>::Zero()));
+  ASSERT_EQ(direct_loop.start(body).component, Status::kOk);
+  ASSERT_EQ(wired_loop.start(body).component, Status::kOk);
+  GuidanceCommand<T> command;
   for (std::uint64_t k = 0; k <= 1500; ++k) {
-    if (k > 0) {
-      ASSERT_EQ(direct_stub.advance(k, R, Vector2<T>::Zero()), Status::kOk);
-      ASSERT_EQ(wired_stub.advance(k, R, Vector2<T>::Zero()), Status::kOk);
-    }
-    in.request = k == 100 ? ModeRequest::kUncage : ModeRequest::kNone;
-    in.slew_rate_cmd_rad_s = k >= 600 ? Vector2<T>(T(0.2), T(-0.1)) : Vector2<T>::Zero();
-    PickoffReading<T> r;
-    ASSERT_EQ(wired_stub.read_pickoffs(r), PortStatus::kOk);
-    std::array<std::uint8_t, link::kGyroLinkFrameBytes<T>> buf{};
-    const std::size_t n = link::encode_frame(link::encode_pickoff(r, seq++), buf);
-    for (std::size_t i = 0; i < n; ++i) ASSERT_TRUE(wire.rx().push(buf[i]));
-
-    ASSERT_EQ(direct.step(k, in), Status::kOk);
-    ASSERT_EQ(wired.step(k, in), Status::kOk);
-
-    for (std::uint8_t b; wire.tx().pop(b);) {
-      ASSERT_TRUE(electronics.push(b));
-      for (link::GyroLinkFrame<T> f; electronics.next(f);) {
-        Vector2<T> t;
-        ASSERT_TRUE(link::decode_torque(f, t));
-        ASSERT_EQ(wired_stub.write_torquer(t), PortStatus::kOk);
-      }
-    }
+    command.request = k == 100 ? ModeRequest::kUncage : ModeRequest::kNone;
+    command.slew_rate_cmd_rad_s = k >= 600 ? Vector2<T>(T(0.2), T(-0.1)) : Vector2<T>::Zero();
+    const SilStatus<Status> d = direct_loop.tick(k, body, command);
+    const SilStatus<Status> w = wired_loop.tick(k, body, command);
+    ASSERT_EQ(d.stub, Status::kOk);
+    ASSERT_EQ(w.stub, Status::kOk);
+    ASSERT_EQ(d.component, Status::kOk);
+    ASSERT_EQ(w.component, Status::kOk);
+    ASSERT_TRUE(wired_side.link_ok) << "tick " << k;
     const GyroTelemetry<T>& a = direct.telemetry();
     const GyroTelemetry<T>& b = wired.telemetry();
     ASSERT_EQ(a.mode, b.mode) << "tick " << k;

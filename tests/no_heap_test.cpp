@@ -21,9 +21,12 @@
 #include <vector>
 
 #include "gyro/gimbal_plant.hpp"
+#include "gyro/gyro_component.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
+#include "gyro/seeker_example.hpp"
 #include "gyro/seeker_gimbal.hpp"
+#include "gyro/sil_loop.hpp"
 
 namespace gyro {
 namespace {
@@ -247,6 +250,58 @@ TYPED_TEST(NoHeap, GivenTheGimbalPlantWithEverythingOnWhenConfiguredStartedAndSt
     EXPECT_EQ(st[5], Status::kOk);
     EXPECT_TRUE(contact);
     EXPECT_TRUE(saturated);
+  }
+}
+
+// ----------------------------------------------------------------------------------------------
+// The SIL loop (body, stub, component), both plants, both ways of feeding the stub the body:
+// configure, power-up, caging, uncaging, slewing, a scheduled torquer fault, a refused tick.
+
+TYPED_TEST(NoHeap, GivenTheSilLoopWithBothPlantsWhenStartedAndTickedThroughEveryModeThenNoHeap) {
+  using T = TypeParam;
+  for (const PlantKind plant : {PlantKind::kGimbal, PlantKind::kReport}) {
+    for (const StubBodyFeed feed : {StubBodyFeed::kFull, StubBodyFeed::kAttitude}) {
+      SimulatedGyroConfig<T> sc = SeekerExample<T>::stub();
+      sc.plant = plant;
+      sc.pickoff.noise_rad = T(2e-5);
+      sc.faults[0].kind = FaultKind::kDeadTorquer;
+      sc.faults[0].start_tick = 900;
+      SimulatedGyro<T> stub;
+      GyroComponent<T> component(stub);
+      SilLoop<T, GyroComponent<T>> loop(stub, component, feed);
+      const Vector2<T> pitch_yaw(T(0.1), T(-0.05));
+      BodySample<T> body = turning_body(Matrix3<T>(Matrix3<T>::Identity()), pitch_yaw);
+      body.specific_force = Vector3<T>(T(0), T(5), T(-30));
+      GuidanceCommand<T> command;
+      ConfigCheck stub_check, component_check;
+      SilStatus<Status> started;
+      Status worst = Status::kOk, refused = Status::kOk;
+      const HeapUse use = measure_heap([&] {
+        stub_check = stub.configure(sc);
+        component_check = component.configure(SeekerExample<T>::component());
+        started = loop.start(body);
+        const Matrix3<T> turn = pitch_then_yaw_turn(pitch_yaw, SeekerExample<T>::kTick);
+        for (std::uint64_t k = 0; k <= 1000; ++k) {
+          if (k > 0) body.R_earth_to_body = turn * body.R_earth_to_body;
+          command.request = k == 100 ? ModeRequest::kUncage : ModeRequest::kNone;
+          command.slew_rate_cmd_rad_s = k < 700 ? Vector2<T>(Vector2<T>::Zero()) : Vector2<T>(T(0.3), T(-0.2));
+          const SilStatus<Status> s = loop.tick(k, body, command);
+          if (s.stub != Status::kOk) worst = s.stub;
+          if (s.component != Status::kOk) worst = s.component;
+        }
+        BodySample<T> bad = body;
+        bad.R_earth_to_body(0, 0) = T(2);  // not a rotation: the stub refuses the tick
+        refused = loop.tick(1001, bad, command).stub;
+      });
+      expect_no_heap(use, "SilLoop");
+      EXPECT_TRUE(stub_check.ok());
+      EXPECT_TRUE(component_check.ok());
+      EXPECT_EQ(started.stub, Status::kOk);
+      EXPECT_EQ(started.component, Status::kOk);
+      EXPECT_EQ(worst, Status::kOk);
+      EXPECT_EQ(refused, Status::kInvalidRotation);
+      EXPECT_EQ(component.mode(), GyroMode::kFault) << "the dead torquer latched safe mode";
+    }
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "body_motion.hpp"
 #include "gyro/gyro_component.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "scenario.hpp"
 
@@ -50,14 +51,26 @@ int main(int argc, char** argv) {
   s.body.rate_rad_s = {0.0, 0.0, 0.0};  // the body weaves about a fixed mean attitude
   gyro::SimulatedGyro<double> stub;
   gyro::GyroComponent<double> comp(stub);
+  // The stub sees the body as the report's driver gives it (attitude, lateral and normal force).
+  gyro::SilLoop<double, gyro::GyroComponent<double>> loop(stub, comp, gyro::StubBodyFeed::kAttitude);
   gyro::sil::BodyMotion body(s.body, s.run.tick_s);
-  if (!stub.configure(s.gyro).ok() || stub.start(body.R_earth_to_body(), Eigen::Vector2d(body.rate_rad_s().tail<2>())) != gyro::Status::kOk ||
-      !comp.configure(s.component).ok() || comp.activate() != gyro::Status::kOk) {
+  const auto sample = [&body] {
+    gyro::BodySample<double> b;
+    b.R_earth_to_body = body.R_earth_to_body();
+    b.rate_rad_s = body.rate_rad_s();
+    b.specific_force = body.specific_force();
+    return b;
+  };
+  bool configured = stub.configure(s.gyro).ok() && comp.configure(s.component).ok();
+  if (configured) {
+    const gyro::SilStatus<gyro::Status> started = loop.start(sample());
+    configured = started.stub == gyro::Status::kOk && started.component == gyro::Status::kOk;
+  }
+  if (!configured) {
     std::fprintf(stderr, "configuration refused\n");
     return 2;
   }
-  gyro::GuidanceInput<double> in;
-  in.nav_valid = true;
+  gyro::GuidanceCommand<double> command;
   const long rss_start = resident_kib();
   long rss_after_warmup = -1;
   std::size_t heap_after_warmup = 0;
@@ -69,16 +82,16 @@ int main(int argc, char** argv) {
   for (std::uint64_t k = 1; k <= ticks; ++k) {
     body.advance();
     t_accumulated += tick_f;
-    if (stub.advance(k, body.R_earth_to_body(), Eigen::Vector2d(body.specific_force().tail<2>())) != gyro::Status::kOk) {
+    command.request = (k == 100) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
+    // Track the body, closing the gimbal angles slowly: the seeker holds its line of sight.
+    command.slew_rate_cmd_rad_s =
+        Eigen::Vector2d(body.rate_rad_s().tail<2>()) - 2.0 * comp.telemetry().gimbal_measured_rad;
+    const gyro::SilStatus<gyro::Status> ran = loop.tick(k, sample(), command);
+    if (ran.stub != gyro::Status::kOk) {
       std::fprintf(stderr, "stub refused tick %" PRIu64 "\n", k);
       return 1;
     }
-    in.R_earth_to_body = body.R_earth_to_body();
-    in.body_rate_rad_s = body.rate_rad_s();
-    in.request = (k == 100) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
-    // Track the body, closing the gimbal angles slowly: the seeker holds its line of sight.
-    in.slew_rate_cmd_rad_s = Eigen::Vector2d(body.rate_rad_s().tail<2>()) - 2.0 * comp.telemetry().gimbal_measured_rad;
-    if (comp.step(k, in) != gyro::Status::kOk) {
+    if (ran.component != gyro::Status::kOk) {
       std::fprintf(stderr, "component refused tick %" PRIu64 "\n", k);
       return 1;
     }

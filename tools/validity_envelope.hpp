@@ -25,6 +25,7 @@
 #include "gyro/gyro_component.hpp"
 #include "gyro/gyro_model.hpp"
 #include "gyro/seeker_example.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro::validity {
@@ -275,29 +276,34 @@ inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindow
   const GyroComponentConfig<double> cc = Seeker::component();
   SimulatedGyro<double> stub;
   GyroComponent<double> comp(stub);
+  SilLoop<double, GyroComponent<double>> loop(stub, comp);
   BodySample<double> sample;
   sample.rate_rad_s = body.rate_rad_s;
   sample.R_earth_to_body = body.R_earth_to_body(0.0);
-  if (!stub.configure(stub_config).ok() || stub.start(sample) != Status::kOk || !comp.configure(cc).ok() ||
-      comp.activate() != Status::kOk) {
-    return out;
-  }
-  GuidanceInput<double> in;
-  in.nav_valid = true;
-  in.body_rate_rad_s = body.rate_rad_s;
+  if (!stub.configure(stub_config).ok() || !comp.configure(cc).ok()) return out;
+  const SilStatus<Status> started = loop.start(sample);
+  if (started.stub != Status::kOk || started.component != Status::kOk) return out;
   const std::uint64_t settle = static_cast<std::uint64_t>(std::lround(kSettleSeconds / dt));
   const std::uint64_t window = static_cast<std::uint64_t>(std::lround(window_s / dt));
   std::uint64_t free_tick = 0;
   V2 flown = V2::Zero();  // the rate the component flew from the last tick
+  GuidanceCommand<double> command;
   const std::uint64_t last = kUncageTick + cc.uncage_settle_ticks + 2 + settle + window;
   for (std::uint64_t tick = 1; tick <= last; ++tick) {
     const double t = static_cast<double>(tick) * dt;
     sample.R_earth_to_body = body.R_earth_to_body(t);
-    if (stub.advance(tick, sample) != Status::kOk) return out;
-    const GyroTelemetry<double>& tm = comp.telemetry();
-    const bool free_now = comp.mode() == GyroMode::kFree;
-    const bool in_window = free_tick > 0 && tick > free_tick + settle && tick <= free_tick + settle + window;
-    if (in_window) {
+    // Guidance from the last tick's telemetry.
+    const bool free_before = comp.mode() == GyroMode::kFree;
+    command.request = tick == kUncageTick ? ModeRequest::kUncage : ModeRequest::kNone;
+    command.slew_rate_cmd_rad_s =
+        free_before ? guidance_command(path, body, comp.telemetry().gimbal_measured_rad) : V2(V2::Zero());
+    const SilStatus<Status> ran = loop.tick(tick, sample, command);
+    if (ran.stub != Status::kOk || ran.component != Status::kOk) return out;
+    // The window, from the tick the component went free before this one (the stub's truth is
+    // what the torque written this tick has not moved yet).
+    const bool window_tick = free_tick > 0 && tick > free_tick + settle && tick <= free_tick + settle + window;
+    const GyroTelemetry<double>& now = comp.telemetry();
+    if (window_tick) {
       const V2 truth = stub.spin_axis_rate_rad_s();
       const double err = (truth - flown).norm();
       out.slew_error_rad_s = std::max(out.slew_error_rad_s, err);
@@ -307,11 +313,6 @@ inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindow
       out.cone_min_window_rad = std::min(out.cone_min_window_rad, stub.cone_rad());
       out.cone_max_window_rad = std::max(out.cone_max_window_rad, stub.cone_rad());
     }
-    in.R_earth_to_body = sample.R_earth_to_body;
-    in.request = tick == kUncageTick ? ModeRequest::kUncage : ModeRequest::kNone;
-    in.slew_rate_cmd_rad_s = free_now ? guidance_command(path, body, tm.gimbal_measured_rad) : V2(V2::Zero());
-    if (comp.step(tick, in) != Status::kOk) return out;
-    const GyroTelemetry<double>& now = comp.telemetry();
     flown = now.rate_cmd_rad_s;
     if (free_tick == 0 && comp.mode() == GyroMode::kFree) {
       free_tick = tick;
@@ -341,12 +342,11 @@ inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindow
       if (out.first_contact_tick == 0) out.first_contact_tick = tick;
     }
     if (free_tick > 0) out.max_cone_rad = std::max(out.max_cone_rad, stub.cone_rad());
-    const bool window_tick = free_tick > 0 && tick > free_tick + settle && tick <= free_tick + settle + window;
     if (window_tick) {
       out.worst_residual_window_rad = std::max(out.worst_residual_window_rad, now.residual_rad.cwiseAbs().maxCoeff());
       out.flags_window |= now.flags;
-      out.max_command_rad_s = std::max(out.max_command_rad_s, in.slew_rate_cmd_rad_s.cwiseAbs().maxCoeff());
-      if ((in.slew_rate_cmd_rad_s - now.rate_cmd_rad_s).cwiseAbs().maxCoeff() > 1e-12) ++out.clipped_ticks;
+      out.max_command_rad_s = std::max(out.max_command_rad_s, command.slew_rate_cmd_rad_s.cwiseAbs().maxCoeff());
+      if ((command.slew_rate_cmd_rad_s - now.rate_cmd_rad_s).cwiseAbs().maxCoeff() > 1e-12) ++out.clipped_ticks;
     }
   }
   out.residual_fault = comp.telemetry().counters[6] > 0u;  // kResidualFault is bit 6

@@ -8,6 +8,7 @@
 
 #include "gyro/gyro_component.hpp"
 #include "gyro/seeker_example.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro_fw {
@@ -66,31 +67,25 @@ template <typename T, typename Sink>
 [[nodiscard]] gyro::Status run_sil_scenario(const SilScenario& s, int index, Sink&& sink) noexcept {
   gyro::SimulatedGyro<T> stub;
   gyro::GyroComponent<T> component(stub);
-  const gyro::Matrix3<T> level = gyro::Matrix3<T>::Identity();
-  gyro::Matrix3<T> r_eb = level;
+  gyro::SilLoop<T, gyro::GyroComponent<T>> loop(stub, component, gyro::StubBodyFeed::kAttitude);
   const gyro::Vector2<T> body_rate(T(0.1), T(-0.05));
+  gyro::BodySample<T> body = gyro::turning_body(gyro::Matrix3<T>(gyro::Matrix3<T>::Identity()), body_rate);
   if (!stub.configure(sil_stub_config<T>(s)).ok()) return gyro::Status::kOutOfRange;
-  gyro::Status st = stub.start(r_eb, body_rate);
-  if (st != gyro::Status::kOk) return st;
   if (!component.configure(sil_component_config<T>()).ok()) return gyro::Status::kOutOfRange;
-  st = component.activate();
-  if (st != gyro::Status::kOk) return st;
-  const T dt = T(5e-4);
-  const gyro::Matrix3<T> turn = gyro::frame_rotation_z(body_rate(1) * dt) * gyro::frame_rotation_y(body_rate(0) * dt);
-  gyro::GuidanceInput<T> in;
-  in.nav_valid = true;
-  in.body_rate_rad_s = gyro::Vector3<T>(T(0), body_rate(0), body_rate(1));
+  const gyro::SilStatus<gyro::Status> started = loop.start(body);
+  if (started.stub != gyro::Status::kOk) return started.stub;
+  if (started.component != gyro::Status::kOk) return started.component;
+  const gyro::Matrix3<T> turn = gyro::pitch_then_yaw_turn(body_rate, T(5e-4));
+  gyro::GuidanceCommand<T> command;
   for (int k = 1; k <= s.ticks; ++k) {
-    r_eb = turn * r_eb;
-    st = stub.advance(static_cast<std::uint64_t>(k), r_eb, gyro::Vector2<T>::Zero());
-    if (st != gyro::Status::kOk) return st;
-    in.R_earth_to_body = r_eb;
-    in.request = (k == 200) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
-    in.slew_rate_cmd_rad_s = (k < 1000)   ? gyro::Vector2<T>::Zero()
-                             : (k < 2200) ? gyro::Vector2<T>(T(0.3), T(-0.2))
-                                          : body_rate;
-    st = component.step(static_cast<std::uint64_t>(k), in);
-    if (st != gyro::Status::kOk) return st;
+    body.R_earth_to_body = turn * body.R_earth_to_body;
+    command.request = (k == 200) ? gyro::ModeRequest::kUncage : gyro::ModeRequest::kNone;
+    command.slew_rate_cmd_rad_s = (k < 1000)   ? gyro::Vector2<T>::Zero()
+                                  : (k < 2200) ? gyro::Vector2<T>(T(0.3), T(-0.2))
+                                               : body_rate;
+    const gyro::SilStatus<gyro::Status> st = loop.tick(static_cast<std::uint64_t>(k), body, command);
+    if (st.stub != gyro::Status::kOk) return st.stub;
+    if (st.component != gyro::Status::kOk) return st.component;
     if (k % kSilCheckpointEvery == 0 || k == s.ticks) {
       const gyro::GyroTelemetry<T>& tm = component.telemetry();
       sink(SilSample<T>{index, k, static_cast<int>(tm.mode), tm.flags, stub.gimbal_angle_rad()(0),

@@ -7,6 +7,7 @@
 
 #include "gyro/gyro_component.hpp"
 #include "gyro/seeker_example.hpp"
+#include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 
 namespace gyro::testing {
@@ -19,7 +20,8 @@ class Sil {
  public:
   SimulatedGyro<T> gyro;
   GyroComponent<T> component{gyro};
-  GuidanceInput<T> guidance;
+  SilLoop<T, GyroComponent<T>> loop{gyro, component, StubBodyFeed::kAttitude};
+  GuidanceInput<T> guidance;  // request, slew command and nav_valid of the next step
   Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};
   Vector2<T> body_rate{Vector2<T>::Zero()};  // (pitch q, yaw r)
   std::uint64_t tick{0};
@@ -28,22 +30,23 @@ class Sil {
   bool start(const GyroComponentConfig<T>& c = SeekerGyro<T>::component(),
              const SimulatedGyroConfig<T>& s = SeekerGyro<T>::stub()) {
     tick_s_ = c.tick_s;
-    return gyro.configure(s).ok() && gyro.start(R_earth_to_body, body_rate) == Status::kOk &&
-           component.configure(c).ok() && component.activate() == Status::kOk;
+    if (!gyro.configure(s).ok() || !component.configure(c).ok()) return false;
+    const SilStatus<Status> started = loop.start(turning_body(R_earth_to_body, body_rate));
+    return started.stub == Status::kOk && started.component == Status::kOk;
   }
 
   // One tick: the body moves, the stub advances to it, the component runs.
   Status step(ModeRequest request = ModeRequest::kNone) {
-    const Matrix3<T> turn = frame_rotation_z(body_rate(1) * tick_s_) * frame_rotation_y(body_rate(0) * tick_s_);
-    R_earth_to_body = turn * R_earth_to_body;
+    R_earth_to_body = pitch_then_yaw_turn(body_rate, tick_s_) * R_earth_to_body;
     ++tick;
-    const Status adv = gyro.advance(tick, R_earth_to_body, Vector2<T>::Zero());
-    if (adv != Status::kOk) return adv;
-    guidance.request = request;
-    guidance.nav_valid = true;
-    guidance.R_earth_to_body = R_earth_to_body;
-    guidance.body_rate_rad_s = Vector3<T>(T(0), body_rate(0), body_rate(1));
-    last = component.step(tick, guidance);
+    GuidanceCommand<T> command;
+    command.request = request;
+    command.slew_rate_cmd_rad_s = guidance.slew_rate_cmd_rad_s;
+    command.nav_valid = true;
+    const SilStatus<Status> ran = loop.tick(tick, turning_body(R_earth_to_body, body_rate), command);
+    if (ran.stub != Status::kOk) return ran.stub;
+    guidance = loop.input();
+    last = ran.component;
     return last;
   }
 

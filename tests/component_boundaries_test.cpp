@@ -1,0 +1,530 @@
+// What a single-line change of component/ can break without another suite noticing
+// (scripts/mutation.sh, scripts/mutants.tsv): the tick count's gaps and their trust, a gap
+// combined with a pickoff move and with the estimator's step, the exact edges of every range
+// test (>= against >), leaving safe mode, the direction of the torque law's overflow path,
+// and a correction that brings the spin axis back inside the cone. Each test names the
+// behaviour; the mutant list names the test that kills each mutant.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "gyro/gyro_component.hpp"
+#include "gyro/gyro_model.hpp"
+#include "gyro/report_sample.hpp"
+#include "support/corrupting_port.hpp"
+#include "support/sil_fixture.hpp"
+
+namespace gyro {
+namespace {
+
+using testing::CorruptingPort;
+using testing::SeekerGyro;
+using testing::Sil;
+using testing::telemetry_finite;
+using testing::WireFault;
+
+// Counter index of a flag bit in telemetry.counters.
+constexpr std::size_t counter_of(ComponentFlag f) {
+  std::size_t i = 0;
+  while ((1u << i) != static_cast<std::uint32_t>(f)) ++i;
+  return i;
+}
+
+// A port whose readings the test writes: each read returns `reading` with the sequence
+// advanced (unless `hold_sequence`), or `read_status`. `fill_on_failure` makes a failed read
+// still write the reading (a driver breaking the port's contract). Torques are recorded.
+class ScriptedPort final : public GyroPort<double> {
+ public:
+  ScriptedPort() noexcept {
+    reading.valid = true;
+    reading.spin_hz = 400.0;
+    reading.spin_valid = true;
+  }
+  [[nodiscard]] PortStatus read_pickoffs(PickoffReading<double>& out) noexcept override {
+    if (!hold_sequence) ++reading.sequence;
+    if (read_status != PortStatus::kOk && !fill_on_failure) return read_status;
+    out = reading;
+    return read_status;
+  }
+  [[nodiscard]] PortStatus write_torquer(const Vector2<double>& torque) noexcept override {
+    torque_written = torque;
+    return PortStatus::kOk;
+  }
+
+  PickoffReading<double> reading{};  // at (0, 0), valid, 400 Hz
+  PortStatus read_status{PortStatus::kOk};
+  bool hold_sequence{false};
+  bool fill_on_failure{false};
+  Vector2<double> torque_written{Vector2<double>::Zero()};
+};
+
+// The component on a scripted port, the body at rest with usable navigation. The first
+// reading goes out with sequence 1 (set `port.reading.sequence` to start elsewhere).
+struct Bench {
+  ScriptedPort port;
+  GyroComponent<double> component{port};
+  GuidanceInput<double> guidance;
+  std::uint64_t tick{0};
+
+  explicit Bench(const GyroComponentConfig<double>& c = SeekerGyro<double>::component()) {
+    guidance.nav_valid = true;
+    ok = component.configure(c).ok() && component.activate() == Status::kOk;
+  }
+  Status step(ModeRequest request = ModeRequest::kNone) { return step_at(tick + 1, request); }
+  Status step_at(std::uint64_t count, ModeRequest request = ModeRequest::kNone) {
+    tick = count;
+    guidance.request = request;
+    return component.step(count, guidance);
+  }
+  void run(int ticks) {
+    for (int k = 0; k < ticks; ++k) (void)step();
+  }
+  [[nodiscard]] const GyroTelemetry<double>& tm() const { return component.telemetry(); }
+  [[nodiscard]] bool raised(ComponentFlag f) const { return (tm().flags & f) != 0u; }
+  bool ok{false};
+};
+
+const GyroComponentConfig<double> kSeeker = SeekerGyro<double>::component();
+
+// Lets `ticks` ticks pass for the body and the stub without calling the component.
+void lose_ticks(Sil<double>& sil, int ticks) {
+  const double dt = SeekerGyro<double>::kTick;
+  for (int k = 0; k < ticks; ++k) {
+    sil.R_earth_to_body = frame_rotation_z(sil.body_rate(1) * dt) * frame_rotation_y(sil.body_rate(0) * dt) *
+                          sil.R_earth_to_body;
+    ++sil.tick;
+    ASSERT_EQ(sil.gyro.advance(sil.tick, sil.R_earth_to_body, Vector2<double>::Zero()), Status::kOk);
+  }
+}
+
+// ---- the tick count -------------------------------------------------------------------------
+
+TEST(ComponentTick, GivenGapsOfLostTicksWhenBridgedThenEachIsFlaggedAndCountedOnceAndTheTickRunsClean) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(5);
+  ASSERT_EQ(b.step_at(b.tick + 3), Status::kOk) << "lost ticks are no bad input";
+  EXPECT_TRUE(b.raised(kTickSkipped));
+  EXPECT_FALSE(b.raised(kTickInvalid));
+  EXPECT_EQ(b.tm().counters[counter_of(kTickSkipped)], 1u);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_FALSE(b.raised(kTickSkipped)) << "the tick after a bridged gap is an ordinary one";
+  ASSERT_EQ(b.step_at(b.tick + kSeeker.max_tick_gap), Status::kOk) << "the longest gap bridged";
+  EXPECT_TRUE(b.raised(kTickSkipped));
+  EXPECT_EQ(b.tm().counters[counter_of(kTickSkipped)], 2u);
+  EXPECT_EQ(b.tm().counters[counter_of(kTickInvalid)], 0u);
+}
+
+TEST(ComponentTick, GivenAJumpRightAfterAnUntrustedCountThenItIsNotBridgedButTakenAsOneInvalidTick) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(5);
+  ASSERT_EQ(b.step_at(b.tick + 1000), Status::kInputIgnored);
+  EXPECT_TRUE(b.raised(kTickInvalid));
+  // Three ahead of an untrusted count: not believed either (the count is resynchronised).
+  ASSERT_EQ(b.step_at(b.tick + 3), Status::kInputIgnored);
+  EXPECT_TRUE(b.raised(kTickInvalid));
+  EXPECT_FALSE(b.raised(kTickSkipped));
+  ASSERT_EQ(b.step(), Status::kOk) << "followed by one: an ordinary tick, and trusted";
+  EXPECT_EQ(b.tm().flags & (kTickInvalid | kTickSkipped), 0u);
+  ASSERT_EQ(b.step_at(b.tick + 2), Status::kOk);
+  EXPECT_TRUE(b.raised(kTickSkipped)) << "trusted again: a gap is bridged";
+  EXPECT_EQ(b.tm().counters[counter_of(kTickInvalid)], 2u);
+}
+
+TEST(ComponentTick, GivenARepeatedCountThenItIsOneInvalidTickNeverABridgeOfZeroTicks) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(5);
+  ASSERT_EQ(b.step_at(b.tick), Status::kInputIgnored);
+  EXPECT_TRUE(b.raised(kTickInvalid));
+  EXPECT_FALSE(b.raised(kTickSkipped));
+  EXPECT_TRUE(telemetry_finite(b.tm()));
+}
+
+TEST(ComponentTick, GivenAFirstCallWithAnyCountThenItIsTrustedAtOnce) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  ASSERT_EQ(b.step_at(1'000'000), Status::kOk) << "there is no count before the first to disagree with";
+  EXPECT_EQ(b.tm().flags & (kTickInvalid | kTickSkipped), 0u);
+  ASSERT_EQ(b.step_at(b.tick + 2), Status::kOk);
+  EXPECT_TRUE(b.raised(kTickSkipped));
+}
+
+// ---- a gap with a pickoff move and with the estimator ----------------------------------------
+
+// A slew of 1 rad/s moves the gimbal 5e-4 rad a tick; with max_pickoff_step_rad = 1e-3 a gap of
+// four ticks (2e-3 rad) is beyond one tick's bound and within four ticks'.
+TEST(ComponentTick, GivenLostTicksWhileSlewingWhenTheNextReadingArrivesThenItIsJudgedAgainstTheBoundOfTheElapsedTicks) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.max_pickoff_step_rad = 1e-3;
+  Sil<double> sil;
+  ASSERT_TRUE(sil.start(c));
+  ASSERT_TRUE(sil.uncage());
+  sil.guidance.slew_rate_cmd_rad_s = Vector2<double>(1.0, 0.0);
+  sil.run(40);
+  ASSERT_EQ(sil.tm().flags & (kPickoffJump | kPickoffInvalid | kPickoffStale), 0u);
+  const Vector2<double> before = sil.tm().gimbal_measured_rad;
+  lose_ticks(sil, 3);
+  ASSERT_EQ(sil.step(), Status::kOk);
+  EXPECT_NE(sil.tm().flags & kTickSkipped, 0u);
+  const double moved = (sil.tm().gimbal_measured_rad - before).cwiseAbs().maxCoeff();
+  EXPECT_EQ(sil.tm().flags & kPickoffJump, 0u) << "a move of " << moved << " rad over 4 ticks";
+  EXPECT_GT(moved, c.max_pickoff_step_rad) << "the reading after the gap was accepted";
+  EXPECT_LT(moved, 4 * c.max_pickoff_step_rad);
+}
+
+// The estimator's transition is cached per spin and step: with the spin held at the nominal
+// (no readback), a gap changes only the step, and the prediction must span all of it.
+TEST(ComponentTick, GivenTheNominalSpinWhenTicksAreLostThenThePredictionSpansTheWholeGap) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.use_spin_readback = false;
+  for (const int gap : {2, 5, 8}) {
+    SCOPED_TRACE(gap);
+    Sil<double> sil;
+    ASSERT_TRUE(sil.start(c));
+    ASSERT_TRUE(sil.uncage());
+    sil.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.5, -0.4);
+    sil.run(50);
+    lose_ticks(sil, gap - 1);
+    ASSERT_EQ(sil.step(), Status::kOk);
+    EXPECT_NE(sil.tm().flags & kTickSkipped, 0u);
+    EXPECT_LT(sil.tm().residual_rad.cwiseAbs().maxCoeff(), 2e-5) << "predicted over the whole gap";
+    ASSERT_EQ(sil.step(), Status::kOk);
+    EXPECT_LT(sil.tm().residual_rad.cwiseAbs().maxCoeff(), 2e-5) << "and one tick again after it";
+  }
+}
+
+// The same at the model: a step of a new dt with the spin unchanged is the step of that dt, bit
+// for bit what a model uncaged at the same rates does in one step.
+TEST(GyroModelCache, GivenTheSameSpinWhenTheStepChangesThenEachStepUsesItsOwnTransition) {
+  const GyroModelConfig<double> c = ReportSample<double>::config();
+  const Vector2<double> torque(0.3, -0.2);
+  GyroStepInput<double> in;
+  in.spin_hz = ReportSample<double>::kSpinHz;
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(c).ok());
+  ASSERT_EQ(g.uncage(Matrix3<double>::Identity(), Vector2<double>(0.05, -0.02)), Status::kOk);
+  for (const double dt : {1e-3, 3e-3, 1e-3, 2.5e-4}) {
+    SCOPED_TRACE(dt);
+    GyroModel<double> fresh;
+    ASSERT_TRUE(fresh.configure(c).ok());
+    ASSERT_EQ(fresh.uncage(Matrix3<double>::Identity(), g.rate_rad_s()), Status::kOk);
+    in.dt_s = dt;
+    ASSERT_EQ(g.step_torque(in, torque), Status::kOk);
+    ASSERT_EQ(fresh.step_torque(in, torque), Status::kOk);
+    EXPECT_EQ(g.isaf_angle_rad(), fresh.isaf_angle_rad());
+    EXPECT_EQ(g.rate_rad_s(), fresh.rate_rad_s());
+  }
+}
+
+// ---- the pickoff reading's bounds --------------------------------------------------------------
+
+TEST(ComponentPickoffs, GivenAReadingExactlyAtThePickoffRangeThenAcceptedAndJustBeyondItInvalid) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.pickoff_range_rad = 4e-3;  // within one tick's jump bound of zero
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.run(2);
+  for (const Vector2<double>& edge : {Vector2<double>(4e-3, 0.0), Vector2<double>(0.0, -4e-3)}) {
+    b.port.reading.gimbal_angle_rad = edge;
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_FALSE(b.raised(kPickoffInvalid)) << edge.transpose();
+    EXPECT_EQ(b.tm().gimbal_measured_rad, edge);
+    const Vector2<double> beyond(std::nextafter(edge(0), 2 * edge(0)), std::nextafter(edge(1), 2 * edge(1)));
+    b.port.reading.gimbal_angle_rad = beyond;
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_TRUE(b.raised(kPickoffInvalid)) << beyond.transpose();
+    EXPECT_EQ(b.tm().gimbal_measured_rad, edge) << "the last accepted reading stands";
+  }
+}
+
+TEST(ComponentPickoffs, GivenTheFirstReadingWithSequenceZeroThenItIsAcceptedNotStale) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.port.hold_sequence = true;  // sequence 0, as a driver's first conversion may carry
+  b.port.reading.gimbal_angle_rad = Vector2<double>(1e-3, -2e-3);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().flags & (kPickoffStale | kPickoffInvalid), 0u);
+  EXPECT_EQ(b.tm().gimbal_measured_rad, b.port.reading.gimbal_angle_rad);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_TRUE(b.raised(kPickoffStale)) << "the same sequence again is stale";
+}
+
+TEST(ComponentPickoffs, GivenAReadingRejectedAsAJumpWhenItsSequenceComesAgainThenItIsStale) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(3);
+  b.port.reading.gimbal_angle_rad = Vector2<double>(0.05, 0.0);  // ten ticks' bound in one
+  ASSERT_EQ(b.step(), Status::kOk);
+  ASSERT_TRUE(b.raised(kPickoffJump));
+  b.port.hold_sequence = true;
+  b.port.reading.gimbal_angle_rad = Vector2<double>(1e-3, 0.0);  // plausible, but no new conversion
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_TRUE(b.raised(kPickoffStale));
+  EXPECT_EQ(b.tm().gimbal_measured_rad, Vector2<double>::Zero());
+}
+
+TEST(ComponentPickoffs, GivenInvalidReadingsThenTheBoundWidensByTheTicksWithoutInformationAndResetsOnAcceptance) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(3);
+  const double bound = kSeeker.max_pickoff_step_rad;
+  b.port.reading.valid = false;
+  b.run(3);  // three ticks without information: the next reading may have moved 4 bounds
+  b.port.reading.valid = true;
+  b.port.reading.gimbal_angle_rad = Vector2<double>(3.5 * bound, 0.0);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().flags & (kPickoffJump | kPickoffInvalid), 0u);
+  EXPECT_EQ(b.tm().gimbal_measured_rad(0), 3.5 * bound);
+  // Accepted: the bound is one tick's again.
+  b.port.reading.gimbal_angle_rad = Vector2<double>(3.5 * bound + 1.5 * bound, 0.0);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_TRUE(b.raised(kPickoffJump));
+  EXPECT_EQ(b.tm().gimbal_measured_rad(0), 3.5 * bound);
+}
+
+// ---- the spin readback -------------------------------------------------------------------------
+
+TEST(ComponentSpin, GivenAReadbackOfExactlyZeroThenItIsUsedAndTheSpinIsLow) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = 0.0;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().spin_hz, 0.0) << "a stopped rotor is a reading, not a failed readback";
+  EXPECT_TRUE(b.raised(kSpinLow));
+  EXPECT_TRUE(telemetry_finite(b.tm()));
+}
+
+TEST(ComponentSpin, GivenAReadbackExactlyAtTheMinimumThenNotLowAndJustBelowItLow) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = kSeeker.min_spin_hz;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().spin_hz, kSeeker.min_spin_hz);
+  EXPECT_FALSE(b.raised(kSpinLow));
+  b.port.reading.spin_hz = std::nextafter(kSeeker.min_spin_hz, 0.0);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_TRUE(b.raised(kSpinLow));
+}
+
+TEST(ComponentSpin, GivenALowSpinThenTheFaultLatchesExactlyAfterItsPersistence) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = 250.0;
+  for (std::uint32_t n = 1; n < kSeeker.spin_low_persistence_ticks; ++n) {
+    ASSERT_EQ(b.step(), Status::kOk);
+    ASSERT_EQ(b.component.mode(), GyroMode::kCaged) << n;
+  }
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.component.mode(), GyroMode::kFault);
+  EXPECT_EQ(b.tm().counters[counter_of(kSpinLow)], kSeeker.spin_low_persistence_ticks);
+  EXPECT_EQ(b.tm().torque_cmd, Vector2<double>::Zero()) << "safe mode: torquers off";
+}
+
+TEST(ComponentSpin, GivenAReadbackFromAFailedReadOrWithUnrepresentableMomentumThenTheNominalSpinIsUsed) {
+  {
+    Bench b;
+    ASSERT_TRUE(b.ok);
+    b.port.read_status = PortStatus::kTimeout;
+    b.port.fill_on_failure = true;  // the driver wrote a spin it did not read
+    b.port.reading.spin_hz = 350.0;
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_TRUE(b.raised(kPickoffInvalid));
+    EXPECT_EQ(b.tm().spin_hz, kSeeker.nominal_spin_hz);
+  }
+  {
+    // J0 = 1: the largest double as a spin has a momentum of 2 pi times it, beyond any double.
+    GyroComponentConfig<double> c = kSeeker;
+    c.spin_inertia = 1.0;
+    Bench b(c);
+    ASSERT_TRUE(b.ok);
+    b.port.reading.spin_hz = std::numeric_limits<double>::max();
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_EQ(b.tm().spin_hz, c.nominal_spin_hz);
+    EXPECT_TRUE(telemetry_finite(b.tm()));
+  }
+}
+
+TEST(ComponentTelemetry, GivenTheSpinDropsBelowTwiceTheTickRateOfNutationThenTheUnresolvedFlagFollowsIt) {
+  // 1 kHz tick: the seeker nutates at H/J = 600 Hz at 400 Hz spin (aliased), 150 Hz at 100 Hz.
+  GyroComponentConfig<double> c = kSeeker;
+  c.tick_s = 1e-3;
+  c.cage_gain_1_s = 10;
+  c.min_spin_hz = 50;
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.run(3);
+  EXPECT_TRUE(b.raised(kNutationUnresolved));
+  b.port.reading.spin_hz = 100.0;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_FALSE(b.raised(kNutationUnresolved));
+  b.port.reading.spin_hz = 400.0;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_TRUE(b.raised(kNutationUnresolved));
+}
+
+// ---- navigation and configuration at their edges ------------------------------------------------
+
+TEST(ComponentNavigation, GivenABodyRateExactlyAtItsLimitThenUsedAndJustBeyondItIgnored) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.guidance.body_rate_rad_s = Vector3<double>(kSeeker.max_body_rate_rad_s, 0.0, 0.0);  // roll
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_FALSE(b.raised(kNavInvalid));
+  b.guidance.body_rate_rad_s(0) = -std::nextafter(kSeeker.max_body_rate_rad_s, 1e3);
+  ASSERT_EQ(b.step(), Status::kInputIgnored);
+  EXPECT_TRUE(b.raised(kNavInvalid));
+}
+
+TEST(ComponentConfig, GivenEachLimitExactlyAtItsEdgeThenTheInclusiveOnesAreAcceptedAndTheStrictOnesRefused) {
+  using C = GyroComponentConfig<double>;
+  struct Case {
+    const char* field;
+    void (*edge)(C&);
+    bool accepted;
+  };
+  const Case cases[] = {
+      {"cage_gain_1_s", [](C& c) { c.cage_gain_1_s = 1.0 / c.tick_s; }, true},  // gain * tick = 1
+      {"estimator_gain", [](C& c) { c.estimator_gain = 1.0; }, true},
+      {"gimbal_cone_limit_rad", [](C& c) { c.gimbal_cone_limit_rad = kPi<double> / 2; }, true},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = c.gimbal_cone_limit_rad; }, false},
+      {"min_spin_hz", [](C& c) { c.min_spin_hz = c.nominal_spin_hz; }, false},
+      {"min_spin_hz", [](C& c) { c.min_spin_hz = 0.0; }, true},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = 0.0; }, true},
+  };
+  for (const Case& k : cases) {
+    C c = kSeeker;
+    k.edge(c);
+    Sil<double> sil;
+    const ConfigCheck r = sil.component.configure(c);
+    if (k.accepted) {
+      EXPECT_TRUE(r.ok()) << k.field << ": " << (r.field ? r.field : "");
+    } else {
+      EXPECT_EQ(r.status, Status::kOutOfRange) << k.field;
+      ASSERT_NE(r.field, nullptr) << k.field;
+      EXPECT_STREQ(r.field, k.field);
+    }
+  }
+}
+
+// ---- modes ------------------------------------------------------------------------------------
+
+TEST(ComponentModes, GivenAnUncageRequestWithoutUsableNavigationOrReadingThenItStaysCaged) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(5);
+  b.guidance.nav_valid = false;
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  EXPECT_EQ(b.component.mode(), GyroMode::kCaged) << "no navigation: no attitude to uncage at";
+  b.guidance.nav_valid = true;
+  b.port.reading.valid = false;
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  EXPECT_EQ(b.component.mode(), GyroMode::kCaged) << "no reading: no gimbal angles to uncage at";
+  b.port.reading.valid = true;
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  EXPECT_EQ(b.component.mode(), GyroMode::kUncaging);
+}
+
+// Leaving safe mode: the estimator, which followed its own prediction while the readings were
+// off, restarts at the first good reading: no residual, the prediction the measurement.
+TEST(ComponentModes, GivenSafeModeAfterABiasJumpWhenCagedThenTheEstimatorRestartsAtTheMeasurement) {
+  SimulatedGyro<double> gyro;
+  CorruptingPort<double> wire{gyro};
+  GyroComponent<double> component{wire};
+  const Matrix3<double> body = Matrix3<double>::Identity();  // at rest
+  ASSERT_TRUE(gyro.configure(SeekerGyro<double>::stub()).ok());
+  ASSERT_EQ(gyro.start(body, Vector2<double>::Zero()), Status::kOk);
+  ASSERT_TRUE(component.configure(kSeeker).ok());
+  ASSERT_EQ(component.activate(), Status::kOk);
+  GuidanceInput<double> g;
+  g.nav_valid = true;
+  std::uint64_t tick = 0;
+  const auto step = [&](ModeRequest request) {
+    ++tick;
+    EXPECT_EQ(gyro.advance(tick, body, Vector2<double>::Zero()), Status::kOk);
+    g.request = request;
+    return component.step(tick, g);
+  };
+  for (int k = 0; k < 100; ++k) (void)step(ModeRequest::kNone);
+  wire.fault = WireFault::kJump;  // every reading 0.1 rad off from now on
+  for (int k = 0; k < 15; ++k) (void)step(ModeRequest::kNone);
+  ASSERT_EQ(component.mode(), GyroMode::kFault);
+  ASSERT_GT(component.telemetry().residual_rad.cwiseAbs().maxCoeff(), 0.05) << "the estimator kept to the gyro";
+  ASSERT_EQ(step(ModeRequest::kCage), Status::kOk);
+  ASSERT_EQ(component.mode(), GyroMode::kCaged);
+  ASSERT_EQ(step(ModeRequest::kNone), Status::kOk);
+  const GyroTelemetry<double>& t = component.telemetry();
+  EXPECT_EQ(t.residual_rad, Vector2<double>::Zero());
+  EXPECT_NEAR(t.gimbal_predicted_rad(0), t.gimbal_measured_rad(0), 1e-12);
+  EXPECT_NEAR(t.gimbal_predicted_rad(1), t.gimbal_measured_rad(1), 1e-12);
+  for (int k = 0; k < 50; ++k) ASSERT_EQ(step(ModeRequest::kNone), Status::kOk);
+  EXPECT_EQ(component.mode(), GyroMode::kCaged) << "no residual fault from the old prediction";
+  EXPECT_EQ(t.flags & kResidualFault, 0u);
+}
+
+// ---- the torque law ---------------------------------------------------------------------------
+
+TEST(ComponentCaging, GivenAnInvalidReadingWhileCagedThenTheGimbalLoopPausesAndTheYawTermIsOnTheSpinAxis) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  const Vector2<double> gimbal(0.04, 0.045);  // the loop's rates within the 1 rad/s limits
+  b.port.reading.gimbal_angle_rad = gimbal;
+  ASSERT_EQ(b.step(), Status::kOk);
+  // th' = -k th; the yaw rate of the spin axis about z_I is ps' cos th = -k ps cos th.
+  EXPECT_NEAR(b.tm().rate_cmd_rad_s(0), -kSeeker.cage_gain_1_s * gimbal(0), 1e-9);
+  EXPECT_NEAR(b.tm().rate_cmd_rad_s(1), -kSeeker.cage_gain_1_s * gimbal(1) * std::cos(gimbal(0)), 1e-6);
+  b.port.reading.valid = false;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().rate_cmd_rad_s, Vector2<double>::Zero()) << "no loop on a reading not taken this tick";
+}
+
+// Rates and spin whose torques overflow: the saturated torque keeps the law's direction. With
+// H far above f the law is H times the rate turned a quarter: (H w_z, -H w_y cos th).
+TEST(ComponentTorqueLaw, GivenATorqueBeyondTheLargestDoubleThenSaturatedInTheDirectionOfTheLaw) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.max_pitch_rate_rad_s = 1e300;
+  c.max_yaw_rate_rad_s = 1e300;
+  c.uncage_settle_ticks = 1;
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = 1e200;  // H = 1.9e196: H times 1e200 rad/s overflows
+  b.run(3);
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  b.run(2);
+  ASSERT_EQ(b.component.mode(), GyroMode::kFree);
+  for (const Vector2<double>& w : {Vector2<double>(1e200, -2e200), Vector2<double>(-3e200, 1e200)}) {
+    SCOPED_TRACE(w.transpose());
+    b.guidance.slew_rate_cmd_rad_s = w;
+    ASSERT_EQ(b.step(), Status::kOk);
+    ASSERT_TRUE(b.raised(kTorquerSaturated));
+    const Vector2<double> t = b.port.torque_written;
+    ASSERT_TRUE(all_finite(t));
+    EXPECT_EQ(t.cwiseAbs().maxCoeff(), c.max_torque);
+    const Vector2<double> law(w(1), -w(0));  // cos th = 1 at the zero gimbal angles read
+    const Vector2<double> expected = law / law.cwiseAbs().maxCoeff() * c.max_torque;
+    EXPECT_NEAR(t(0), expected(0), 1e-12);
+    EXPECT_NEAR(t(1), expected(1), 1e-12);
+  }
+}
+
+// ---- the model's gimbal-limit flag after a correction -----------------------------------------
+
+TEST(GyroModelCorrection, GivenASpinAxisOutsideTheConeWhenCorrectedBackInsideThenTheGimbalLimitFlagClears) {
+  const GyroModelConfig<double> c = ReportSample<double>::config();  // cone 0.436 rad
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(c).ok());
+  const Matrix3<double> r = Matrix3<double>::Identity();
+  ASSERT_EQ(g.uncage(r, Vector2<double>::Zero(), Vector2<double>(0.5, 0.0)), Status::kOk);
+  ASSERT_TRUE(g.gimbal_limit_exceeded());
+  ASSERT_EQ(g.correct_attitude(Vector2<double>(-0.2, 0.0), r), Status::kOk);
+  EXPECT_FALSE(g.gimbal_limit_exceeded()) << "cone " << g.gimbal_cone_rad();
+  EXPECT_EQ(g.flags() & kFlagGimbalLimit, 0u);
+  ASSERT_EQ(g.correct_attitude(Vector2<double>(0.0, 0.5), r), Status::kOk);
+  EXPECT_TRUE(g.gimbal_limit_exceeded()) << "cone " << g.gimbal_cone_rad();
+}
+
+}  // namespace
+}  // namespace gyro

@@ -510,6 +510,36 @@ TEST(ComponentTorqueLaw, GivenATorqueBeyondTheLargestDoubleThenSaturatedInTheDir
   }
 }
 
+// The rotor's momentum H + J0 r is negative when the inner gimbal rolls against a slow spin:
+// the overflow path scaled its factors by max(f, h) = 0 and wrote a NaN torque.
+TEST(ComponentTorqueLaw, GivenANegativeRotorMomentumOnTheOverflowPathThenTheTorqueIsFiniteAndSaturated) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.friction = 0.0;
+  c.spin_inertia = 1.0;
+  c.min_spin_hz = 0.0;
+  c.max_pitch_rate_rad_s = 1e308;
+  c.max_yaw_rate_rad_s = 1e308;
+  c.max_body_rate_rad_s = 200.0;
+  c.uncage_settle_ticks = 1;
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = 0.0;
+  b.guidance.body_rate_rad_s = Vector3<double>(-100.0, 0.0, 0.0);
+  b.run(3);
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  b.run(3);
+  ASSERT_EQ(b.component.mode(), GyroMode::kFree);
+  b.guidance.slew_rate_cmd_rad_s = Vector2<double>(1e307, -1e307);
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_EQ(b.step(), Status::kOk);
+    const Vector2<double> t = b.port.torque_written;
+    ASSERT_TRUE(all_finite(t)) << t.transpose();
+    EXPECT_LE(t.cwiseAbs().maxCoeff(), c.max_torque);
+  }
+  EXPECT_TRUE(b.raised(kTorquerSaturated));
+  EXPECT_EQ(b.port.torque_written.cwiseAbs().maxCoeff(), c.max_torque);
+}
+
 // ---- the model's gimbal-limit flag after a correction -----------------------------------------
 
 TEST(GyroModelCorrection, GivenASpinAxisOutsideTheConeWhenCorrectedBackInsideThenTheGimbalLimitFlagClears) {

@@ -365,8 +365,9 @@ class GyroComponent {
     if (!all_finite(torque)) {
       // The products overflowed (huge rate limits or spin; f, h and the rates are finite and
       // not all zero here): the same direction from factors scaled to at most 1, then
-      // saturated without overflow.
-      const T k = std::max(f, h);
+      // saturated without overflow. (h can be negative: the inner gimbal rolling against a
+      // slow spin.)
+      const T k = std::max(f, std::abs(h));
       const T r = std::max(rate.cwiseAbs().maxCoeff(), body.cwiseAbs().maxCoeff());
       torque = torquers_for_rate(frame, h / k, f / k, Vector2<T>(rate / r), Vector2<T>(body / r));
       torque = (torque / torque.cwiseAbs().maxCoeff()) * config_.max_torque;

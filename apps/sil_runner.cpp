@@ -436,6 +436,12 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
 
 std::span<const std::string_view> csv_columns() noexcept { return columns(); }
 
+void row_cells(const TickRecord& r, std::span<CellValue> out) {
+  if (out.size() != columns().size()) throw std::invalid_argument("row_cells: one cell per CSV column");
+  std::size_t i = 0;
+  for_each_column(r, [&](const Column&, const auto& v) { out[i++] = CellValue(v); });
+}
+
 namespace {
 
 std::uint64_t decimal_digits(std::uint64_t v) {

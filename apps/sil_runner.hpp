@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include "csv_writer.hpp"
 #include "gyro/status.hpp"
@@ -77,6 +78,11 @@ class TickObserver {
 
 // Every column written (the required ones first); see docs/scenarios.md for their meaning.
 [[nodiscard]] std::span<const std::string_view> csv_columns() noexcept;
+// A row's cells as values, in csv_columns() order (the standard columns only): a number, an
+// integer (tick, flag words, status) or a name (mode, request). What the CSV writes, before
+// formatting; the Python module's time histories are made from it.
+using CellValue = std::variant<double, std::uint64_t, const char*>;
+void row_cells(const TickRecord& r, std::span<CellValue> out);
 // 1-based column number of `name` (for gnuplot); 0 if there is no such column.
 [[nodiscard]] int csv_column(std::string_view name) noexcept;
 

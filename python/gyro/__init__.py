@@ -1,0 +1,70 @@
+"""gyro: exact two-axis gimballed gyro dynamics and the flight component's models, from Python.
+
+Exact dynamics:   RotorParameters, make_transition, advance, propagate (one state or an
+                  (n, 4) batch of states (theta, psi, theta', psi')), compute_modes.
+Models:           GyroModel / GyroModelF32, GimbalPlant / GimbalPlantF32 (float64 / float32).
+Runs:             run_sil (a scenario file or dict -> SilRun), run_campaign (-> CampaignRun).
+Refusals:         ConfigError (.field), StatusError (.status), ScenarioError (.field, .file).
+
+See docs/python.md.
+"""
+
+from . import errors
+from ._gyro import (
+    FLAG_GIMBAL_LIMIT,
+    FLAG_SMALL_ANGLE,
+    GimbalPlant,
+    GimbalPlantF32,
+    GyroModel,
+    GyroModelF32,
+    RotorParameters,
+    Status,
+    Transition,
+    TransitionF32,
+    advance,
+    angular_momentum,
+    component_flag_names,
+    compute_modes,
+    frame_rotation_y,
+    frame_rotation_z,
+    make_transition,
+    propagate,
+    sil_columns,
+    status_text,
+    steady_precession_rate,
+)
+from ._gyro import _run_campaign, _run_sil
+from .errors import ConfigError, GyroError, RunError, ScenarioError, StatusError
+from .results import CampaignRun, SilRun
+
+__all__ = [
+    "FLAG_GIMBAL_LIMIT", "FLAG_SMALL_ANGLE", "GimbalPlant", "GimbalPlantF32", "GyroModel", "GyroModelF32",
+    "RotorParameters", "Status", "Transition", "TransitionF32", "advance", "angular_momentum",
+    "component_flag_names", "compute_modes", "frame_rotation_y", "frame_rotation_z", "make_transition",
+    "propagate", "sil_columns", "status_text", "steady_precession_rate", "run_sil", "run_campaign",
+    "ConfigError", "GyroError", "RunError", "ScenarioError", "StatusError", "CampaignRun", "SilRun", "errors",
+]
+
+
+def run_sil(scenario, *, precision=None, ticks=None):
+    """Runs a SIL scenario as gyro_sil does and returns its time history.
+
+    scenario: a scenario file (str or os.PathLike) or a dict with a scenario's contents
+    (docs/scenarios.md). precision: 'float' or 'double' overrides run.precision; ticks
+    overrides the run's length. Returns a SilRun (columns keyed by the CSV's names, and the
+    component's telemetry). Raises ScenarioError (naming the JSON field) or RunError.
+    """
+    columns, telemetry = _run_sil(scenario, precision, ticks)
+    return SilRun(columns=columns, telemetry=telemetry)
+
+
+def run_campaign(campaign, *, runs=None, threads=1, base_dir=None):
+    """Runs a Monte Carlo campaign as gyro_campaign does and returns its per-run table.
+
+    campaign: a campaign file or a dict (docs/campaigns.md); a dict's base scenario path is
+    read relative to base_dir (default: the current directory). runs: run only the first
+    `runs` runs (their rows are those of the full campaign). threads: worker threads.
+    Returns a CampaignRun. Raises ScenarioError for a refused campaign.
+    """
+    header, columns = _run_campaign(campaign, runs, threads, None if base_dir is None else str(base_dir))
+    return CampaignRun(header=list(header), columns=columns)

@@ -1,0 +1,118 @@
+// A campaign run (apps/campaign, gyro_campaign's library) from Python: the campaign parsed
+// as gyro_campaign does, its runs executed on worker threads (RunPool), and the per-run table
+// (runs.csv) returned column by column: numbers as float64 (NaN for an empty cell), anything
+// else as a list of str.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bindings.hpp"
+#include "campaign_error.hpp"
+#include "campaign_file.hpp"
+#include "errors.hpp"
+#include "run_pool.hpp"
+#include "run_table.hpp"
+#include "scenario.hpp"
+#include "scenario_source.hpp"
+
+namespace py = pybind11;
+
+namespace gyro::python {
+
+namespace {
+
+using campaign::Campaign;
+
+// The table's rows in run order, as runs.csv holds them.
+campaign::RunTable run_all(const Campaign& c, unsigned threads) {
+  std::vector<std::pair<std::uint64_t, std::string>> rows;
+  campaign::RunPool pool(c, 0, c.runs, threads);
+  while (!pool.done()) {
+    for (std::string& r : pool.take(std::chrono::milliseconds(200))) {
+      const std::uint64_t k = campaign::row_run_index(r).value_or(std::numeric_limits<std::uint64_t>::max());
+      rows.emplace_back(k, std::move(r));
+    }
+  }
+  std::sort(rows.begin(), rows.end());
+  std::string text = campaign::csv_line(campaign::table_header(c)) + "\n";
+  for (const auto& [k, r] : rows) text += r;
+  return campaign::parse_run_table(text, c, c.file);
+}
+
+py::dict table_columns(const campaign::RunTable& t) {
+  py::dict d;
+  for (std::size_t col = 0; col < t.header().size(); ++col) {
+    std::vector<double> numbers;
+    bool numeric = true;
+    for (std::size_t r = 0; r < t.size() && numeric; ++r) {
+      const std::string cell = t.text(r, col);
+      const std::optional<double> v = campaign::cell_number(cell);
+      if (cell.empty()) {
+        numbers.push_back(std::numeric_limits<double>::quiet_NaN());
+      } else if (v) {
+        numbers.push_back(*v);
+      } else {
+        numeric = false;
+      }
+    }
+    const py::str key(t.header()[col]);
+    if (numeric) {
+      d[key] = py::array_t<double>(static_cast<py::ssize_t>(numbers.size()), numbers.data());
+    } else {
+      py::list texts;
+      for (std::size_t r = 0; r < t.size(); ++r) texts.append(t.text(r, col));
+      d[key] = texts;
+    }
+  }
+  return d;
+}
+
+py::tuple run_campaign(const py::object& source, const std::optional<std::uint64_t>& runs, unsigned threads,
+                       const std::optional<std::string>& base_dir) {
+  if (threads == 0) throw py::value_error("threads must be >= 1");
+  const DocumentSource src = document_source(source, "campaign");
+  py::dict columns;
+  std::vector<std::string> header;
+  try {
+    Campaign c = src.path ? campaign::read_campaign(*src.path)
+                          : campaign::parse_campaign(src.text, src.name,
+                                                     base_dir ? std::filesystem::path(*base_dir)
+                                                              : std::filesystem::current_path());
+    if (runs) {
+      if (*runs == 0 || *runs > c.runs) throw py::value_error("runs must be between 1 and the campaign's run count");
+      c.runs = *runs;  // the first runs: each run's row depends only on (campaign, index)
+    }
+    std::optional<campaign::RunTable> table;
+    {
+      py::gil_scoped_release release;
+      table.emplace(run_all(c, threads));
+    }
+    header = table->header();
+    columns = table_columns(*table);
+  } catch (const campaign::CampaignError& e) {
+    raise_python("ScenarioError", py::make_tuple(std::string(e.what()), e.field(), e.file()));
+  } catch (const sil::ScenarioError& e) {
+    raise_python("ScenarioError", py::make_tuple(std::string(e.what()), e.field(), e.file()));
+  }
+  return py::make_tuple(header, columns);
+}
+
+}  // namespace
+
+void bind_campaign_run(py::module_& m) {
+  m.def("_run_campaign", &run_campaign, py::arg("campaign"), py::arg("runs") = py::none(), py::arg("threads") = 1u,
+        py::arg("base_dir") = py::none(),
+        "(header, columns) of a campaign's per-run table; gyro.run_campaign wraps it in a CampaignRun.");
+}
+
+}  // namespace gyro::python

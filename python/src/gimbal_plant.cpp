@@ -1,0 +1,179 @@
+// The nonlinear two-axis gimbal plant of the SIL stub (gyro/gimbal_plant.hpp): GimbalPlant in
+// float64, GimbalPlantF32 in float32. Configured from keyword arguments or a dict (the fields
+// of GimbalPlantConfig) and the tick, started, stepped one tick at a time.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "config_fields.hpp"
+#include "errors.hpp"
+#include "gyro/gimbal_plant.hpp"
+
+namespace py = pybind11;
+
+namespace gyro::python {
+
+namespace {
+
+template <typename T>
+const FieldTable<GimbalPlantConfig<T>>& plant_fields() {
+  using C = GimbalPlantConfig<T>;
+  static const FieldTable<C> table = [] {
+    FieldTable<C> t;
+    t.number("spin_inertia", &C::spin_inertia)
+        .number("rotor_transverse_inertia", &C::rotor_transverse_inertia)
+        .vector("inner_gimbal_inertia", &C::inner_gimbal_inertia)
+        .vector("outer_gimbal_inertia", &C::outer_gimbal_inertia)
+        .number("inner_friction", &C::inner_friction)
+        .number("outer_friction", &C::outer_friction)
+        .number("inner_coulomb_torque", &C::inner_coulomb_torque)
+        .number("outer_coulomb_torque", &C::outer_coulomb_torque)
+        .number("coulomb_rate_scale_rad_s", &C::coulomb_rate_scale_rad_s)
+        .choice("spin_drive", &C::spin_drive, {{"motor", SpinDrive::kMotor}, {"free", SpinDrive::kFree}})
+        .number("max_spin_hz", &C::max_spin_hz)
+        .number("motor_torque_limit", &C::motor_torque_limit)
+        .number("spin_servo_bandwidth_rad_s", &C::spin_servo_bandwidth_rad_s)
+        .number("spin_down_time_s", &C::spin_down_time_s)
+        .number("mass_unbalance", &C::mass_unbalance)
+        .number("stop_cone_rad", &C::stop_cone_rad)
+        .number("stop_restitution", &C::stop_restitution)
+        .choice("torque_axes", &C::torque_axes, {{"gimbal", TorqueAxes::kGimbal}, {"gyro", TorqueAxes::kGyro}})
+        .number("max_body_rate_rad_s", &C::max_body_rate_rad_s)
+        .number("max_torque", &C::max_torque)
+        .number("max_specific_force", &C::max_specific_force)
+        .number("max_substep_phase_rad", &C::max_substep_phase_rad);
+    return t;
+  }();
+  return table;
+}
+
+// The plant and the body's motion at its last tick (the start of the next step).
+template <typename T>
+struct PlantHandle {
+  GimbalPlant<T> plant;
+  BodyState<T> body;
+};
+
+template <typename T>
+void configure_plant(PlantHandle<T>& h, T tick_s, const py::object& config, const py::kwargs& fields) {
+  GimbalPlantConfig<T> c{};
+  plant_fields<T>().apply(c, merged_config(config, fields, "GimbalPlant"));
+  raise_if_refused(h.plant.configure(c, tick_s), "GimbalPlant.configure");
+}
+
+template <typename T>
+BodyState<T> body_of(const Vector3<T>& rate, const Vector3<T>& force) {
+  BodyState<T> b;
+  b.rate_rad_s = rate;
+  b.specific_force = force;
+  return b;
+}
+
+template <typename T>
+void bind_plant(py::module_& m, const char* name, const char* doc) {
+  using H = PlantHandle<T>;
+  using V2 = Vector2<T>;
+  using V3 = Vector3<T>;
+  py::class_<H>(m, name, doc)
+      .def(py::init([](T tick_s, const py::object& config, const py::kwargs& fields) {
+             H h;
+             configure_plant(h, tick_s, config, fields);
+             return h;
+           }),
+           py::arg("tick_s"), py::arg("config") = py::none(),
+           "Configures for ticks of tick_s from a dict and/or keyword arguments (the fields of\n"
+           "GimbalPlantConfig: spin_inertia, rotor_transverse_inertia, inner_gimbal_inertia (3 numbers),\n"
+           "..., spin_drive='motor'|'free', torque_axes='gimbal'|'gyro', the envelope max_*). A refusal\n"
+           "raises gyro.ConfigError naming the field (tick_s included).")
+      .def("configure", &configure_plant<T>, py::arg("tick_s"), py::arg("config") = py::none(),
+           "Configures again (as the constructor); the plant waits for start().")
+      .def(
+          "start",
+          [](H& h, const V2& angle, const V2& rate, T spin_hz, const V3& body_rate, const V3& force) {
+            const BodyState<T> b = body_of(body_rate, force);
+            raise_if_failed(h.plant.start({angle, rate, spin_hz}, b), "GimbalPlant.start");
+            h.body = b;
+          },
+          py::arg("gimbal_angle") = V2(V2::Zero()), py::arg("gimbal_rate") = V2(V2::Zero()), py::kw_only(),
+          py::arg("spin_hz"), py::arg("body_rate") = V3(V3::Zero()), py::arg("specific_force") = V3(V3::Zero()),
+          "Sets the joint angles (pitch, yaw) and rates relative to the carriers, the spin relative to the\n"
+          "inner gimbal (Hz) and the body's rate (p, q, r) and specific force at t0. Raises gyro.StatusError.")
+      .def(
+          "step",
+          [](H& h, const V2& torque, const std::optional<V3>& body_rate, const std::optional<V3>& force) {
+            const BodyState<T> end = body_of(body_rate ? *body_rate : h.body.rate_rad_s,
+                                             force ? *force : h.body.specific_force);
+            raise_if_failed(h.plant.step(torque, h.body, end), "GimbalPlant.step");
+            h.body = end;
+          },
+          py::arg("torque"), py::kw_only(), py::arg("body_rate") = py::none(), py::arg("specific_force") = py::none(),
+          "One tick with the torques (T1 inner/pitch, T2 outer/yaw) held; the body's rate and specific\n"
+          "force go linearly from the last tick's to the given ones (unchanged if None). A refusal raises\n"
+          "gyro.StatusError and changes nothing.")
+      .def_property_readonly(
+          "gimbal_angle", [](const H& h) { return to_array(V2(h.plant.gimbal_angle_rad())); },
+          "Joint angles (pitch, yaw) rad.")
+      .def_property_readonly(
+          "gimbal_rate", [](const H& h) { return to_array(V2(h.plant.gimbal_rate_rad_s())); },
+          "Joint rates (pitch, yaw) rad/s relative to the carriers.")
+      .def_property_readonly(
+          "spin_rate", [](const H& h) { return h.plant.spin_rate_rad_s(); }, "Spin relative to the inner gimbal (rad/s).")
+      .def_property_readonly(
+          "twist", [](const H& h) { return h.plant.joint_state().twist_rad; }, "Rotor twist angle (rad, wrapped).")
+      .def_property_readonly("cone", [](const H& h) { return h.plant.cone_rad(); }, "Spin axis to body x (rad).")
+      .def_property_readonly(
+          "spin_axis_body", [](const H& h) { return to_array(V3(h.plant.spin_axis_body())); },
+          "The spin axis in body axes (unit vector).")
+      .def_property_readonly(
+          "angular_momentum_body", [](const H& h) { return to_array(V3(h.plant.angular_momentum_body())); },
+          "Angular momentum of rotor and gimbals about the gimbal centre, body axes.")
+      .def_property_readonly(
+          "rotor_angular_momentum_body", [](const H& h) { return to_array(V3(h.plant.rotor_angular_momentum_body())); },
+          "The rotor's angular momentum, body axes.")
+      .def_property_readonly("kinetic_energy", [](const H& h) { return h.plant.kinetic_energy(); },
+                             "Kinetic energy of rotor and gimbals.")
+      .def_property_readonly(
+          "work",
+          [](const H& h) {
+            const GimbalWork<T>& w = h.plant.work();
+            py::dict d;
+            d["torquer"] = w.torquer;
+            d["friction"] = w.friction;
+            d["spin"] = w.spin;
+            d["unbalance"] = w.unbalance;
+            return d;
+          },
+          "Work done on the joints since start(), by source (dict).")
+      .def_property_readonly("motor_torque", [](const H& h) { return h.plant.motor_torque(); },
+                             "The last tick's mean spin-motor torque.")
+      .def_property_readonly("motor_saturated", [](const H& h) { return h.plant.motor_saturated(); },
+                             "Whether the motor hit its limit in the last tick.")
+      .def_property_readonly("in_contact", [](const H& h) { return h.plant.in_contact(); },
+                             "Whether the gimbal touched its stop in the last tick.")
+      .def_property_readonly("substeps", [](const H& h) { return h.plant.substeps(); },
+                             "Runge-Kutta sub-steps per tick, fixed by configure().")
+      .def_property_readonly("tick_s", [](const H& h) { return h.plant.tick_s(); }, "The tick (s).")
+      .def_property_readonly("started", [](const H& h) { return h.plant.started(); }, "Whether start() has run.")
+      .def_property_readonly(
+          "config", [](const H& h) { return plant_fields<T>().to_dict(h.plant.config()); },
+          "The configuration as a dict.")
+      .def_property_readonly_static(
+          "dtype", [](const py::object&) { return py::dtype::of<T>(); }, "The scalar type: float64 or float32.")
+      .def_property_readonly_static(
+          "config_fields", [](const py::object&) { return plant_fields<T>().names(); }, "The configuration's keys.");
+}
+
+}  // namespace
+
+void bind_gimbal_plant(py::module_& m) {
+  bind_plant<double>(m, "GimbalPlant", "The nonlinear two-axis gimbal plant of the SIL stub, float64.");
+  bind_plant<float>(m, "GimbalPlantF32", "The nonlinear two-axis gimbal plant of the SIL stub, float32.");
+}
+
+}  // namespace gyro::python

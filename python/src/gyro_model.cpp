@@ -1,0 +1,213 @@
+// GyroModel (gyro/gyro_model.hpp), the report's subroutine GYRO as a class: GyroModel in
+// float64, GyroModelF32 in float32. Configured from keyword arguments or a dict (the fields of
+// GyroModelConfig; errors as a nested dict {"pitch": {...}, "yaw": {...}}), uncaged, stepped.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "config_fields.hpp"
+#include "errors.hpp"
+#include "gyro/gyro_model.hpp"
+
+namespace py = pybind11;
+
+namespace gyro::python {
+
+namespace {
+
+template <typename T>
+FieldTable<AxisErrorSources<T>> axis_error_fields() {
+  using A = AxisErrorSources<T>;
+  FieldTable<A> t;
+  t.number("static_drift_rad_s", &A::static_drift_rad_s)
+      .number("in_plane_erection_1_s", &A::in_plane_erection_1_s)
+      .number("cross_plane_erection_1_s", &A::cross_plane_erection_1_s)
+      .number("g_sensitive_drift_rad_s", &A::g_sensitive_drift_rad_s)
+      .number("torquer_cross_coupling", &A::torquer_cross_coupling)
+      .number("coulomb_friction_rad_s", &A::coulomb_friction_rad_s);
+  return t;
+}
+
+template <typename T>
+const FieldTable<GyroModelConfig<T>>& model_fields() {
+  using C = GyroModelConfig<T>;
+  static const FieldTable<C> table = [] {
+    FieldTable<GyroErrorSources<T>> errors;
+    errors.nested("pitch", &GyroErrorSources<T>::pitch, axis_error_fields<T>())
+        .nested("yaw", &GyroErrorSources<T>::yaw, axis_error_fields<T>());
+    FieldTable<C> t;
+    t.number("pitch_inertia", &C::pitch_inertia)
+        .number("yaw_inertia", &C::yaw_inertia)
+        .number("spin_inertia", &C::spin_inertia)
+        .number("friction", &C::friction)
+        .number("gimbal_cone_limit_rad", &C::gimbal_cone_limit_rad)
+        .number("pitch_gimbal_limit_rad", &C::pitch_gimbal_limit_rad)
+        .number("yaw_gimbal_limit_rad", &C::yaw_gimbal_limit_rad)
+        .number("max_pitch_rate_rad_s", &C::max_pitch_rate_rad_s)
+        .number("max_yaw_rate_rad_s", &C::max_yaw_rate_rad_s)
+        .number("small_angle_limit_rad", &C::small_angle_limit_rad)
+        .number("gravity", &C::gravity)
+        .nested("errors", &C::errors, std::move(errors))
+        .choice("torquer_axes", &C::torquer_axes, {{"gyro", TorquerAxes::kGyro}, {"gimbal", TorquerAxes::kGimbal}});
+    return t;
+  }();
+  return table;
+}
+
+template <typename T>
+void configure_model(GyroModel<T>& g, const py::object& config, const py::kwargs& fields) {
+  GyroModelConfig<T> c{};
+  model_fields<T>().apply(c, merged_config(config, fields, "GyroModel"));
+  raise_if_refused(g.configure(c), "GyroModel.configure");
+}
+
+template <typename T>
+Matrix3<T> attitude_or_identity(const std::optional<Matrix3<T>>& r) {
+  return r ? *r : Matrix3<T>(Matrix3<T>::Identity());
+}
+
+template <typename T>
+GyroStepInput<T> step_input(T dt, T spin_hz, const std::optional<Matrix3<T>>& r, const Vector2<T>& accel,
+                            const Vector3<T>& body_rate) {
+  GyroStepInput<T> in;
+  in.dt_s = dt;
+  in.R_earth_to_body = attitude_or_identity(r);
+  in.body_accel = accel;
+  in.spin_hz = spin_hz;
+  in.body_rate_rad_s = body_rate;
+  return in;
+}
+
+template <typename T>
+void bind_model(py::module_& m, const char* name, const char* doc) {
+  using G = GyroModel<T>;
+  using V2 = Vector2<T>;
+  using V3 = Vector3<T>;
+  using M3 = std::optional<Matrix3<T>>;
+  const std::string who(name);
+  py::class_<G>(m, name, doc)
+      .def(py::init([](const py::object& config, const py::kwargs& fields) {
+             G g;
+             configure_model(g, config, fields);
+             return g;
+           }),
+           py::arg("config") = py::none(),
+           "Configures from a dict and/or keyword arguments (the fields of GyroModelConfig: pitch_inertia,\n"
+           "yaw_inertia, spin_inertia, friction, gimbal_cone_limit_rad, max_pitch_rate_rad_s,\n"
+           "max_yaw_rate_rad_s, ..., errors={'pitch': {...}, 'yaw': {...}}, torquer_axes='gyro'|'gimbal').\n"
+           "Keyword arguments override the dict. A refusal raises gyro.ConfigError naming the field.")
+      .def("configure", &configure_model<T>, py::arg("config") = py::none(),
+           "Configures again (as the constructor); leaves the gyro caged. Raises gyro.ConfigError.")
+      .def(
+          "uncage",
+          [](G& g, const M3& r, const V2& body_rate, const V2& offset) {
+            raise_if_failed(g.uncage(attitude_or_identity(r), body_rate, offset), "GyroModel.uncage");
+          },
+          py::arg("R_earth_to_body") = py::none(), py::arg("body_rate") = V2(V2::Zero()), py::arg("offset") = V2(V2::Zero()),
+          "Uncages: rates from the body's (pitch, yaw) rates, attitude from the body's (identity if None)\n"
+          "plus a small (pitch, yaw) offset. Raises gyro.StatusError.")
+      .def(
+          "uncage_on_gimbal",
+          [](G& g, const M3& r, const V3& body_rate, const V2& gimbal) {
+            raise_if_failed(g.uncage_on_gimbal(attitude_or_identity(r), body_rate, gimbal),
+                            "GyroModel.uncage_on_gimbal");
+          },
+          py::arg("R_earth_to_body") = py::none(), py::arg("body_rate") = V3(V3::Zero()), py::arg("gimbal") = V2(V2::Zero()),
+          "Uncages at the gimbal angles (pitch, yaw), the gimbals at rest relative to the body (p, q, r).")
+      .def(
+          "step_torque",
+          [](G& g, T dt, const V2& torque, T spin_hz, const M3& r, const V2& accel, const V3& body_rate) {
+            raise_if_failed(g.step_torque(step_input(dt, spin_hz, r, accel, body_rate), torque),
+                            "GyroModel.step_torque");
+          },
+          py::arg("dt"), py::arg("torque"), py::kw_only(), py::arg("spin_hz"), py::arg("R_earth_to_body") = py::none(),
+          py::arg("body_accel") = V2(V2::Zero()), py::arg("body_rate") = V3(V3::Zero()),
+          "One step of dt with the torquer torques (T1, T2) held: gyro axes, or (inner, outer) with\n"
+          "torquer_axes='gimbal'. R_earth_to_body is the body attitude at the END of the step (identity\n"
+          "if None), body_accel (lateral, normal) in the units of gravity, body_rate (p, q, r) for the\n"
+          "gimbal torquer axes. A refusal raises gyro.StatusError and leaves the state unchanged.")
+      .def(
+          "step_slew",
+          [](G& g, T dt, const V2& slew, T spin_hz, const M3& r, const V2& accel, const V3& body_rate) {
+            raise_if_failed(g.step_slew(step_input(dt, spin_hz, r, accel, body_rate), slew), "GyroModel.step_slew");
+          },
+          py::arg("dt"), py::arg("slew_rate"), py::kw_only(), py::arg("spin_hz"),
+          py::arg("R_earth_to_body") = py::none(), py::arg("body_accel") = V2(V2::Zero()),
+          py::arg("body_rate") = V3(V3::Zero()),
+          "One step with the report's command: slew rates (pitch, yaw) limited per axis and turned into\n"
+          "torque for a frictionless gyro. Otherwise as step_torque().")
+      .def(
+          "correct_attitude",
+          [](G& g, const V2& angle, const M3& r) {
+            raise_if_failed(g.correct_attitude(angle, attitude_or_identity(r)), "GyroModel.correct_attitude");
+          },
+          py::arg("angle"), py::arg("R_earth_to_body") = py::none(),
+          "Turns the gyro by small (pitch, yaw) angles about its own axes (an estimator's correction).")
+      .def_property_readonly(
+          "rate", [](const G& g) { return to_array(V2(g.rate_rad_s())); }, "(theta', psi') rad/s, gyro axes.")
+      .def_property_readonly(
+          "rate_on_gimbal", [](const G& g) { return to_array(V2(g.rate_on_gimbal_rad_s())); },
+          "The spin axis's inertial rate on the inner gimbal axes (rad/s).")
+      .def_property_readonly(
+          "gimbal", [](const G& g) { return to_array(V2(g.gimbal_pitch_rad(), g.gimbal_yaw_rad())); },
+          "Gimbal angles (pitch, yaw) rad at the end of the last step.")
+      .def_property_readonly("gimbal_pitch", &G::gimbal_pitch_rad, "Gimbal pitch angle (rad).")
+      .def_property_readonly("gimbal_yaw", &G::gimbal_yaw_rad, "Gimbal yaw angle (rad).")
+      .def_property_readonly("gimbal_cone", &G::gimbal_cone_rad, "Angle between spin axis and body x (rad).")
+      .def_property_readonly(
+          "isaf_angle", [](const G& g) { return to_array(V2(g.isaf_angle_rad())); },
+          "The last step's angles (theta, psi) in the inertial small-angle frame (rad).")
+      .def_property_readonly(
+          "nutation_amplitude", [](const G& g) { return to_array(V2(g.nutation_amplitude_rad())); },
+          "The nutation's amplitude per axis after the last step (rad).")
+      .def_property_readonly(
+          "applied_torque", [](const G& g) { return to_array(V2(g.applied_torque())); },
+          "The torque on the rotor over the last step (with the error sources).")
+      .def_property_readonly(
+          "attitude",
+          [](const G& g) {
+            const Quaternion<T>& q = g.attitude_gyro_to_earth();
+            return to_array(Eigen::Matrix<T, 4, 1>(q.w(), q.x(), q.y(), q.z()));
+          },
+          "Quaternion (w, x, y, z), gyro to earth.")
+      .def_property_readonly(
+          "R_earth_to_gyro", [](const G& g) { return to_array(Matrix3<T>(g.R_earth_to_gyro())); },
+          "Rotation matrix earth to gyro axes (3x3).")
+      .def_property_readonly("flags", &G::flags, "Flag word: bit 0 gimbal limit, bit 1 small angle exceeded.")
+      .def_property_readonly("gimbal_limit_exceeded", &G::gimbal_limit_exceeded, "Flag bit 0.")
+      .def_property_readonly("small_angle_exceeded", &G::small_angle_exceeded, "Flag bit 1.")
+      .def_property_readonly("uncaged", &G::uncaged, "Whether uncage() has run since configure().")
+      .def_property_readonly(
+          "config", [](const G& g) { return model_fields<T>().to_dict(g.config()); },
+          "The configuration as a dict (the constructor's keys).")
+      .def_property_readonly_static(
+          "dtype", [](const py::object&) { return py::dtype::of<T>(); }, "The scalar type: float64 or float32.")
+      .def_property_readonly_static(
+          "config_fields", [](const py::object&) { return model_fields<T>().names(); }, "The configuration's keys.")
+      .def("__repr__", [who](const G& g) {
+        return who + "(uncaged=" + (g.uncaged() ? "True" : "False") + ")";
+      });
+}
+
+}  // namespace
+
+void bind_gyro_model(py::module_& m) {
+  bind_model<double>(m, "GyroModel", "The report's gyro model (subroutine GYRO), float64.");
+  bind_model<float>(m, "GyroModelF32", "The report's gyro model (subroutine GYRO), float32.");
+  m.attr("FLAG_GIMBAL_LIMIT") = static_cast<unsigned>(kFlagGimbalLimit);
+  m.attr("FLAG_SMALL_ANGLE") = static_cast<unsigned>(kFlagSmallAngle);
+  m.def(
+      "frame_rotation_y", [](double a) { return to_array(Eigen::Matrix3d(frame_rotation_y(a))); }, py::arg("angle"),
+      "The passive rotation of a body turning by `angle` about its own y axis: R_new = R_y(angle) @ R_old.");
+  m.def(
+      "frame_rotation_z", [](double a) { return to_array(Eigen::Matrix3d(frame_rotation_z(a))); }, py::arg("angle"),
+      "The passive rotation of a body turning by `angle` about its own z axis: R_new = R_z(angle) @ R_old.");
+}
+
+}  // namespace gyro::python

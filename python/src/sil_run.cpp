@@ -1,0 +1,159 @@
+// A SIL run (apps/sil_runner.hpp, gyro_sil's loop) from Python: the scenario parsed and
+// checked as gyro_sil does, the run observed tick by tick, and the CSV's columns returned as
+// NumPy arrays (the values the CSV formats, from sil::row_cells) with the component's
+// telemetry (flags seen, counters, final mode) from the run's summary.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "bindings.hpp"
+#include "errors.hpp"
+#include "scenario.hpp"
+#include "scenario_source.hpp"
+#include "sil_runner.hpp"
+
+namespace py = pybind11;
+
+namespace gyro::python {
+
+namespace {
+
+using sil::CellValue;
+
+// Every standard column, kept by kind.
+class ColumnRecorder final : public sil::TickObserver {
+ public:
+  ColumnRecorder() : row_(sil::csv_columns().size()), columns_(row_.size()) {}
+  void on_tick(const sil::TickRecord& r) override {
+    sil::row_cells(r, row_);
+    for (std::size_t i = 0; i < row_.size(); ++i) {
+      Column& c = columns_[i];
+      std::visit(
+          [&](const auto& v) {
+            using V = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<V, double>) {
+              c.numbers.push_back(v);
+            } else if constexpr (std::is_same_v<V, std::uint64_t>) {
+              c.integers.push_back(v);
+            } else {
+              c.names.emplace_back(v);
+            }
+          },
+          row_[i]);
+    }
+  }
+  // name -> array (float64, uint64, or str).
+  [[nodiscard]] py::dict arrays() const {
+    const py::module_ np = py::module_::import("numpy");
+    py::dict d;
+    const auto names = sil::csv_columns();
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const Column& c = columns_[i];
+      const py::str key(std::string(names[i]));
+      if (!c.integers.empty()) {
+        d[key] = py::array_t<std::uint64_t>(static_cast<py::ssize_t>(c.integers.size()), c.integers.data());
+      } else if (!c.names.empty()) {
+        d[key] = np.attr("array")(py::cast(c.names));
+      } else {
+        d[key] = py::array_t<double>(static_cast<py::ssize_t>(c.numbers.size()), c.numbers.data());
+      }
+    }
+    return d;
+  }
+
+ private:
+  struct Column {
+    std::vector<double> numbers;
+    std::vector<std::uint64_t> integers;
+    std::vector<std::string> names;
+  };
+  std::vector<CellValue> row_;
+  std::vector<Column> columns_;
+};
+
+py::dict telemetry(const sil::RunSummary& s) {
+  py::dict t;
+  t["precision"] = sil::to_string(s.precision);
+  t["ticks"] = s.ticks;
+  t["rows"] = s.rows;
+  t["final_mode"] = to_string(s.final_mode);
+  t["flags_seen"] = s.flags_seen;
+  py::list seen;
+  py::dict counters;
+  for (int b = 0; b < kComponentFlagCount; ++b) {
+    if ((s.flags_seen & (1u << static_cast<unsigned>(b))) != 0u) seen.append(flag_name(b));
+    counters[flag_name(b)] = s.counters[static_cast<std::size_t>(b)];
+  }
+  t["flags_seen_names"] = seen;
+  t["counters"] = counters;
+  t["refused_steps"] = s.refused_steps;
+  t["nonfinite_values"] = s.nonfinite_values;
+  t["gimbal_stop_hits"] = s.gimbal_stop_hits;
+  t["max_abs_gimbal_rad"] = s.max_abs_gimbal_rad;
+  t["wall_s"] = s.wall_s;
+  return t;
+}
+
+py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& precision,
+                  const std::optional<std::uint64_t>& ticks) {
+  std::optional<sil::Precision> p;
+  if (precision) {
+    p = sil::parse_precision(*precision);
+    if (!p) throw py::value_error("precision must be 'float' or 'double'");
+  }
+  if (ticks && *ticks == 0) throw py::value_error("ticks must be >= 1");
+  const DocumentSource src = document_source(scenario, "scenario");
+  ColumnRecorder recorder;
+  sil::RunSummary sum;
+  try {
+    sil::Scenario s;
+    if (src.path) {
+      s = sil::load_scenario(*src.path, p);
+    } else {
+      s = sil::parse_scenario(src.text, src.name);
+      if (p) s.run.precision = *p;
+      sil::check_configs(s);
+    }
+    if (ticks) s.run.ticks = *ticks;
+    sil::RunOptions options;
+    options.progress = false;
+    py::gil_scoped_release release;
+    sum = sil::run_scenario(s, recorder, options);
+  } catch (const sil::ScenarioError& e) {
+    raise_python("ScenarioError", py::make_tuple(std::string(e.what()), e.field(), e.file()));
+  } catch (const sil::RunError& e) {
+    raise_python("RunError", py::make_tuple(std::string(e.what())));
+  }
+  return py::make_tuple(recorder.arrays(), telemetry(sum));
+}
+
+}  // namespace
+
+void bind_sil_run(py::module_& m) {
+  m.def("_run_sil", &run_sil, py::arg("scenario"), py::arg("precision") = py::none(), py::arg("ticks") = py::none(),
+        "(columns, telemetry) of a SIL run; gyro.run_sil wraps it in a SilRun.");
+  m.def(
+      "sil_columns",
+      [] {
+        std::vector<std::string> n;
+        for (const auto c : sil::csv_columns()) n.emplace_back(c);
+        return n;
+      },
+      "The names of gyro_sil's CSV columns, in order.");
+  m.def(
+      "component_flag_names",
+      [] {
+        std::vector<std::string> n;
+        for (int b = 0; b < kComponentFlagCount; ++b) n.emplace_back(flag_name(b));
+        return n;
+      },
+      "The component's flag names, bit 0 first.");
+}
+
+}  // namespace gyro::python

@@ -4,12 +4,13 @@ Exact dynamics:   RotorParameters, make_transition, advance, propagate (one stat
                   (n, 4) batch of states (theta, psi, theta', psi')), compute_modes.
 Models:           GyroModel / GyroModelF32, GimbalPlant / GimbalPlantF32 (float64 / float32).
 Runs:             run_sil (a scenario file or dict -> SilRun), run_campaign (-> CampaignRun).
+Report sample:    report_sample.run() (figures A-1, A-2 of the report).
 Refusals:         ConfigError (.field), StatusError (.status), ScenarioError (.field, .file).
 
 See docs/python.md.
 """
 
-from . import errors
+from . import errors, report_sample
 from ._gyro import (
     FLAG_GIMBAL_LIMIT,
     FLAG_SMALL_ANGLE,
@@ -42,7 +43,7 @@ __all__ = [
     "RotorParameters", "Status", "Transition", "TransitionF32", "advance", "angular_momentum",
     "component_flag_names", "compute_modes", "frame_rotation_y", "frame_rotation_z", "make_transition",
     "propagate", "sil_columns", "status_text", "steady_precession_rate", "run_sil", "run_campaign",
-    "ConfigError", "GyroError", "RunError", "ScenarioError", "StatusError", "CampaignRun", "SilRun", "errors",
+    "ConfigError", "GyroError", "RunError", "ScenarioError", "StatusError", "CampaignRun", "SilRun", "errors", "report_sample",
 ]
 
 

@@ -72,15 +72,17 @@ Matrix3<T> attitude_or_identity(const std::optional<Matrix3<T>>& r) {
   return r ? *r : Matrix3<T>(Matrix3<T>::Identity());
 }
 
+// The optional inputs default to None (not to zero vectors): a default converted from NumPy
+// on every call would cost more than the step itself.
 template <typename T>
-GyroStepInput<T> step_input(T dt, T spin_hz, const std::optional<Matrix3<T>>& r, const Vector2<T>& accel,
-                            const Vector3<T>& body_rate) {
+GyroStepInput<T> step_input(T dt, T spin_hz, const std::optional<Matrix3<T>>& r,
+                            const std::optional<Vector2<T>>& accel, const std::optional<Vector3<T>>& body_rate) {
   GyroStepInput<T> in;
   in.dt_s = dt;
   in.R_earth_to_body = attitude_or_identity(r);
-  in.body_accel = accel;
+  if (accel) in.body_accel = *accel;
   in.spin_hz = spin_hz;
-  in.body_rate_rad_s = body_rate;
+  if (body_rate) in.body_rate_rad_s = *body_rate;
   return in;
 }
 
@@ -90,6 +92,8 @@ void bind_model(py::module_& m, const char* name, const char* doc) {
   using V2 = Vector2<T>;
   using V3 = Vector3<T>;
   using M3 = std::optional<Matrix3<T>>;
+  using O2 = std::optional<V2>;
+  using O3 = std::optional<V3>;
   const std::string who(name);
   py::class_<G>(m, name, doc)
       .def(py::init([](const py::object& config, const py::kwargs& fields) {
@@ -122,24 +126,24 @@ void bind_model(py::module_& m, const char* name, const char* doc) {
           "Uncages at the gimbal angles (pitch, yaw), the gimbals at rest relative to the body (p, q, r).")
       .def(
           "step_torque",
-          [](G& g, T dt, const V2& torque, T spin_hz, const M3& r, const V2& accel, const V3& body_rate) {
+          [](G& g, T dt, const V2& torque, T spin_hz, const M3& r, const O2& accel, const O3& body_rate) {
             raise_if_failed(g.step_torque(step_input(dt, spin_hz, r, accel, body_rate), torque),
                             "GyroModel.step_torque");
           },
           py::arg("dt"), py::arg("torque"), py::kw_only(), py::arg("spin_hz"), py::arg("R_earth_to_body") = py::none(),
-          py::arg("body_accel") = V2(V2::Zero()), py::arg("body_rate") = V3(V3::Zero()),
+          py::arg("body_accel") = py::none(), py::arg("body_rate") = py::none(),
           "One step of dt with the torquer torques (T1, T2) held: gyro axes, or (inner, outer) with\n"
           "torquer_axes='gimbal'. R_earth_to_body is the body attitude at the END of the step (identity\n"
           "if None), body_accel (lateral, normal) in the units of gravity, body_rate (p, q, r) for the\n"
-          "gimbal torquer axes. A refusal raises gyro.StatusError and leaves the state unchanged.")
+          "gimbal torquer axes (zero if None). A refusal raises gyro.StatusError and leaves the state unchanged.")
       .def(
           "step_slew",
-          [](G& g, T dt, const V2& slew, T spin_hz, const M3& r, const V2& accel, const V3& body_rate) {
+          [](G& g, T dt, const V2& slew, T spin_hz, const M3& r, const O2& accel, const O3& body_rate) {
             raise_if_failed(g.step_slew(step_input(dt, spin_hz, r, accel, body_rate), slew), "GyroModel.step_slew");
           },
           py::arg("dt"), py::arg("slew_rate"), py::kw_only(), py::arg("spin_hz"),
-          py::arg("R_earth_to_body") = py::none(), py::arg("body_accel") = V2(V2::Zero()),
-          py::arg("body_rate") = V3(V3::Zero()),
+          py::arg("R_earth_to_body") = py::none(), py::arg("body_accel") = py::none(),
+          py::arg("body_rate") = py::none(),
           "One step with the report's command: slew rates (pitch, yaw) limited per axis and turned into\n"
           "torque for a frictionless gyro. Otherwise as step_torque().")
       .def(

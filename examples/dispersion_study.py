@@ -57,7 +57,7 @@ def main():
     result = gyro.run_campaign(campaign(args.runs), threads=args.threads)
     ok = np.array([s == "ok" for s in result["status"]])
     err = result["slew_rate_error_rad_s"][ok]
-    friction = result["gyro.rotor.friction"][ok]
+    scale = result["gyro.torquer.scale_factor[0]"][ok]
     p50, p95, p99 = np.percentile(err, [50, 95, 99])
     print(f"{ok.sum()} of {len(result)} runs ran; slew-rate error median {p50:.3e}, 95 % {p95:.3e}, "
           f"99 % {p99:.3e} rad/s")
@@ -68,8 +68,8 @@ def main():
     ax1.set_xlabel("slew-rate error (mrad/s)")
     ax1.set_ylabel("runs")
     ax1.legend()
-    ax2.scatter(friction, err * 1e3, s=10, color="#1f4e9c")
-    ax2.set_xlabel("rotor friction f (N m s)")
+    ax2.scatter(scale, err * 1e3, s=10, color="#1f4e9c")
+    ax2.set_xlabel("pitch torquer scale factor")
     ax2.set_ylabel("slew-rate error (mrad/s)")
     fig.suptitle(f"Seeker slew, {ok.sum()} dispersed runs (friction, torquer scale, pickoff bias)")
     for ax in (ax1, ax2):

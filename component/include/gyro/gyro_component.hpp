@@ -2,8 +2,9 @@
 // tick it reads the pickoffs through the port, validates them, predicts the gyro with the
 // exact dynamics, decides the mode, computes the torque law and writes the torquer.
 //
-// Guarantees: no heap, no exceptions, no RTTI; every tick does the same bounded work (no
-// loop depends on data); the same inputs give bit-identical outputs; once active no input
+// Guarantees: no heap, no exceptions, no RTTI; every tick's work is bounded (every loop has a
+// fixed bound; a new spin readback rebuilds the estimator's transition, the costliest tick:
+// docs/performance.md measures each); the same inputs give bit-identical outputs; once active no input
 // stops a tick (unusable fields are ignored, flagged and counted); a refused call (before
 // activation, or configure() while active) leaves the state as it was, flagged and counted.
 #pragma once

@@ -185,5 +185,68 @@ TEST(ComponentModes, GivenSafeModeWithoutAMeasuredTickWhenLeftThenTheResidualFau
   EXPECT_EQ(b.component.mode(), GyroMode::kFault) << "after exactly its persistence";
 }
 
+// Uncaging settles for uncage_settle_ticks before the gyro is free, counted from each uncage
+// request: neither an uncaging abandoned half way nor a completed one shortens the next.
+TEST(ComponentModes, GivenTheGyroCagedAgainWhenUncagedOnceMoreThenItSettlesForTheFullCountAgain) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.uncage_settle_ticks = 20;
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.run(5);
+  const auto settles_in_full = [&b, &c]() {
+    if (b.step(ModeRequest::kUncage) != Status::kOk || b.component.mode() != GyroMode::kUncaging) return false;
+    for (std::uint32_t k = 1; k < c.uncage_settle_ticks; ++k) {
+      if (b.step() != Status::kOk || b.component.mode() != GyroMode::kUncaging) return false;
+    }
+    return b.step() == Status::kOk && b.component.mode() == GyroMode::kFree;
+  };
+  ASSERT_TRUE(settles_in_full());
+  ASSERT_EQ(b.step(ModeRequest::kCage), Status::kOk);
+  b.run(5);
+  EXPECT_TRUE(settles_in_full()) << "after a completed uncaging";
+  ASSERT_EQ(b.step(ModeRequest::kCage), Status::kOk);
+  b.run(5);
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  b.run(static_cast<int>(c.uncage_settle_ticks) / 2);
+  ASSERT_EQ(b.step(ModeRequest::kCage), Status::kOk);  // abandoned half way
+  b.run(5);
+  EXPECT_TRUE(settles_in_full()) << "after an abandoned uncaging";
+}
+
+// ---- the torque shaper's reach ----------------------------------------------------------------
+
+// The shaper spaces its taps by the fewest ticks m with m beta dt >= pi/2, up to 8 ticks;
+// beyond, it is off. For J1 = J2 = J the nutation is beta = H / J exactly (the friction
+// terms cancel in beta^2 = (f^2 + H^2) / J^2 - (f / J)^2), so a spin readback picks
+// beta dt = pi/15 (m = 8: on, its first tap a = 1 / (2 (1 - cos(8 pi/15))) = 0.4527) or
+// pi/17 (m would be 9: off, a step of the law passes at once). The step: a gimbal reading
+// that appears while caged, whose loop asks a constant rate from then on.
+TEST(ComponentTorqueShaper, GivenANutationNeedingEightTicksBetweenTapsThenShapedAndNineThenOff) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.min_spin_hz = 10.0;
+  const double j = c.pitch_inertia;
+  for (const int steps_per_half_turn : {15, 17}) {
+    SCOPED_TRACE(steps_per_half_turn);
+    const double beta_dt = kPi<double> / steps_per_half_turn;
+    Bench b(c);
+    ASSERT_TRUE(b.ok);
+    b.port.reading.spin_hz = beta_dt / c.tick_s * j / (2 * kPi<double> * c.spin_inertia);
+    b.run(40);
+    ASSERT_EQ(b.port.torque_written, Vector2<double>::Zero());
+    b.port.reading.gimbal_angle_rad = Vector2<double>(2e-3, 0.0);
+    ASSERT_EQ(b.step(), Status::kOk);
+    const double first = b.port.torque_written(1);
+    b.run(20);  // beyond two spacings of 8
+    ASSERT_EQ(b.component.mode(), GyroMode::kCaged);
+    const double steady = b.port.torque_written(1);
+    ASSERT_GT(std::abs(steady), 1e-4);
+    if (steps_per_half_turn == 15) {
+      EXPECT_NEAR(first / steady, 1 / (2 * (1 - std::cos(8 * beta_dt))), 1e-3) << "shaped, taps 8 ticks apart";
+    } else {
+      EXPECT_NEAR(first / steady, 1.0, 1e-3) << "not shaped";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gyro

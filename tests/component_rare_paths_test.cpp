@@ -213,6 +213,23 @@ TEST(ComponentModes, GivenTheGyroCagedAgainWhenUncagedOnceMoreThenItSettlesForTh
   EXPECT_TRUE(settles_in_full()) << "after an abandoned uncaging";
 }
 
+// The uncage tick restarts the estimator at the reading: its telemetry shows the estimator it
+// starts (no residual, the prediction at the reading), not the caged one's last comparison.
+TEST(ComponentModes, GivenAReadingOffTheCagedPredictionWhenUncagedThenTheTickReportsTheRestartedEstimator) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(5);
+  const Vector2<double> reading(1e-3, -5e-4);
+  b.port.reading.gimbal_angle_rad = reading;
+  ASSERT_EQ(b.step(), Status::kOk);
+  ASSERT_GT(b.tm().residual_rad.cwiseAbs().maxCoeff(), 4e-4) << "caged, the prediction was off the reading";
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  ASSERT_EQ(b.component.mode(), GyroMode::kUncaging);
+  EXPECT_EQ(b.tm().residual_rad, Vector2<double>::Zero());
+  EXPECT_NEAR(b.tm().gimbal_predicted_rad(0), reading(0), 1e-12);
+  EXPECT_NEAR(b.tm().gimbal_predicted_rad(1), reading(1), 1e-12);
+}
+
 // ---- the torque shaper's reach ----------------------------------------------------------------
 
 // The shaper spaces its taps by the fewest ticks m with m beta dt >= pi/2, up to 8 ticks;

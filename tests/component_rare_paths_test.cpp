@@ -1,7 +1,8 @@
 // Paths of the tick that ordinary flights rarely take, each pinned by what it must do
-// (scripts/mutants.tsv names the test that kills each mutant): the body's rate changing within
-// a tick, a reading and its prediction on opposite sides of zero near a gimbal stop, and
-// leaving safe mode after ticks that could not be measured.
+// (docs/mutation.md names the mutants each test kills): the body's rate changing within a
+// tick, stale readings and an invalid spin readback, a reading and its prediction on opposite
+// sides of zero near a gimbal stop, leaving safe mode after ticks that could not be measured,
+// uncaging again, and the torque shaper at its longest spacing.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -89,6 +90,46 @@ TEST(ComponentBodyRate, GivenTheBodysRateRampingWithinATickThenThePredictionFoll
   }
   EXPECT_GT(b.tm().gimbal_measured_rad.cwiseAbs().maxCoeff(), 0.05) << "the body turned under the gyro";
   EXPECT_LT(worst, 0.2 * end_rate_error) << "an end-rate estimator errs by " << end_rate_error << " rad";
+}
+
+// ---- readings without information ----------------------------------------------------------
+
+// A stale reading (the same conversion again) tells as little as an invalid one: the jump
+// bound widens by one tick's step for each, so that the next fresh reading may have moved
+// that much further.
+TEST(ComponentPickoffs, GivenStaleReadingsThenTheJumpBoundWidensByTheTicksWithoutInformation) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(3);
+  const double bound = kSeeker.max_pickoff_step_rad;
+  b.port.hold_sequence = true;
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_EQ(b.step(), Status::kOk);
+    ASSERT_TRUE(b.raised(kPickoffStale));
+  }
+  b.port.hold_sequence = false;  // four ticks since the last reading taken: four bounds
+  b.port.reading.gimbal_angle_rad = Vector2<double>(0.0, -3.5 * bound);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().flags & (kPickoffJump | kPickoffStale | kPickoffInvalid), 0u);
+  EXPECT_EQ(b.tm().gimbal_measured_rad(1), -3.5 * bound);
+}
+
+// A spin readback the port marks invalid is no spin, however plausible its value: the
+// nominal spin is used and nothing is flagged low.
+TEST(ComponentSpin, GivenAReadbackMarkedInvalidThenTheNominalSpinIsUsed) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_valid = false;
+  for (const double spin : {350.0, 100.0}) {
+    b.port.reading.spin_hz = spin;
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_EQ(b.tm().spin_hz, kSeeker.nominal_spin_hz) << spin;
+    EXPECT_FALSE(b.raised(kSpinLow)) << spin;
+  }
+  b.port.reading.spin_valid = true;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().spin_hz, 100.0) << "marked valid again: used";
+  EXPECT_TRUE(b.raised(kSpinLow));
 }
 
 // ---- the gimbal stops ---------------------------------------------------------------------------

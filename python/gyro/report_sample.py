@@ -1,5 +1,5 @@
 """The report's sample run (GYMAIN with INITG) driven through gyro.GyroModel from Python, as
-hil_stub/include/gyro/report_sample.hpp drives it in C++ (gyro_report_sample): spin 100 Hz,
+examples/include/gyro/report_sample.hpp drives it in C++ (gyro_report_sample): spin 100 Hz,
 f = 5, J0 = 3, J1 = 2.25, J2 = 2 slug ft^2, the body turning at 2.3 and 1.8 times 10 deg/s in
 pitch and yaw, slew command (-0.19, 0.013) rad/s limited to 10 deg/s, step 1/floor(20 x
 nutation Hz), 801 steps. Its gimbal angles are the report's figures A-1 and A-2."""

@@ -8,7 +8,7 @@ import pytest
 
 import gyro
 
-# The seeker example's device (hil_stub/include/gyro/seeker_example.hpp), in SI units.
+# The seeker example's device (examples/include/gyro/seeker_example.hpp), in SI units.
 SEEKER = dict(spin_inertia=3e-5, rotor_transverse_inertia=1.6e-5, inner_gimbal_inertia=[2e-6, 4e-6, 2e-6],
               outer_gimbal_inertia=[4e-6, 2e-6, 2e-6], inner_friction=4e-4, outer_friction=4e-4, spin_drive="motor",
               max_spin_hz=400.0, motor_torque_limit=0.01, spin_servo_bandwidth_rad_s=5.0, spin_down_time_s=60.0,

@@ -6,6 +6,7 @@
 make_report.py imports sections() to fill docs/performance.md.
 """
 import csv
+import glob
 import os
 import re
 import statistics
@@ -22,7 +23,7 @@ def fmt(x):
 
 def flag_names():
     """The component's flag names, in bit order, from component_types.hpp (flag_name)."""
-    for path in (os.path.join(ROOT, "component", "include", "gyro", "component_types.hpp"),):
+    for path in sorted(glob.glob(os.path.join(ROOT, "component", "**", "component_types.hpp"), recursive=True)):
         try:
             text = open(path).read()
         except OSError:

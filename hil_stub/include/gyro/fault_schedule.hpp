@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "gyro/config_fields.hpp"
 #include "gyro/gyro_model.hpp"  // ConfigCheck, Status, Vector2
 
 namespace gyro {
@@ -78,6 +79,22 @@ struct FaultEvent {
   std::uint64_t duration_ticks{};  // 0 = permanent
   int axis{-1};                    // 0 pitch, 1 yaw, -1 both
   T magnitude{};  // bias jump (rad); saturated torquer level (torque); spin failure time constant (s)
+};
+
+// The fields (gyro/config_fields.hpp); check(FaultList) checks them per slot. A scenario
+// gives a fault in its own terms (start_s, duration_s).
+template <typename T>
+struct FieldTable<FaultEvent<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Presence kImplied = Presence::kImplied;
+    v(Field{"kind", Rule::kNone, Status::kOutOfRange, kImplied}, c.kind...);
+    v(Field{"start_tick", Rule::kNone, Status::kOutOfRange, kImplied}, c.start_tick...);
+    v(Field{"duration_ticks", Rule::kNone, Status::kOutOfRange, kImplied}, c.duration_ticks...);
+    v(Field{"axis", Rule::kNone, Status::kOutOfRange, kImplied}, c.axis...);
+    v(Field{"magnitude", Rule::kNone, Status::kOutOfRange, kImplied}, c.magnitude...);
+  }
 };
 
 inline constexpr int kMaxFaultEvents = 8;

@@ -539,16 +539,7 @@ std::vector<GuidanceEvent> parse_guidance(const Reader& r, const RunSpec& run, c
                         Reader::format(out.back().t_s) + " s)");
     }
     ev.tick = ticks_at(e, "t_s", ev.t_s, run.tick_s);
-    const std::string req = e.text("request", "none");
-    if (req == "none") {
-      ev.request = ModeRequest::kNone;
-    } else if (req == "cage") {
-      ev.request = ModeRequest::kCage;
-    } else if (req == "uncage") {
-      ev.request = ModeRequest::kUncage;
-    } else {
-      e.fail("request", "expected \"none\", \"cage\" or \"uncage\", got \"" + req + "\"");
-    }
+    if (e.has("request")) ev.request = read_enum<ModeRequest>(e, "request");
     if (e.has("slew_rate_rad_s")) {
       const std::array<double, 2> w = e.numbers<2>("slew_rate_rad_s");
       ev.slew_rate_rad_s = Eigen::Vector2d(w[0], w[1]);
@@ -648,12 +639,9 @@ std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept {
 }
 
 const char* request_name(ModeRequest r) noexcept {
-  switch (r) {
-    case ModeRequest::kNone: return "none";
-    case ModeRequest::kCage: return "cage";
-    case ModeRequest::kUncage: return "uncage";
-  }
-  return "unknown";
+  constexpr auto names = enum_names(ModeRequest{});
+  const auto i = static_cast<std::size_t>(r);
+  return i < names.size() ? names[i] : "unknown";
 }
 
 Scenario parse_scenario(std::string_view json_text, const std::string& file) {

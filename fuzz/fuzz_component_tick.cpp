@@ -3,7 +3,8 @@
 //
 // Input: byte 0 (bit 0 float; bit 1 overrides configuration fields; bit 2 steps before
 // activation; bit 3 friction_compensation off; bit 4 use_spin_readback off); with bit 1 a
-// 32-bit field mask and the overriding values; then one operation word (16 bits) per tick.
+// 32-bit field mask (bit i: the i-th number or count of the configuration's field table) and
+// the overriding values; then one operation word (16 bits) per tick.
 // Each bit of the word changes one thing for that tick (see Script::next): the pickoff angles,
 // the sequence counter, the valid bits and spin readback, a port failure on read or on write,
 // the mode request (invalid enum values included), the slew command, the navigation (valid

@@ -32,6 +32,10 @@ enum class GyroMode : std::uint8_t { kIdle = 0, kCaged, kUncaging, kFree, kFault
 
 // What guidance asks for this tick.
 enum class ModeRequest : std::uint8_t { kNone = 0, kCage, kUncage };
+// The names of the requests in scenario files and logs, in enum order.
+[[nodiscard]] constexpr std::array<const char*, 3> enum_names(ModeRequest) noexcept {
+  return {"none", "cage", "uncage"};
+}
 
 // Flag bits, raised for the tick in which the condition holds (telemetry.flags) and counted
 // (telemetry.counters, index = bit number). The inputs a tick ignored are flagged here too:

@@ -38,33 +38,20 @@ enum class FaultKind : std::uint8_t {
 };
 inline constexpr int kFaultKindCount = 8;
 
+// The fault kinds' names in scenario files and logs, in enum order.
+inline constexpr std::array<const char*, static_cast<std::size_t>(kFaultKindCount)> kFaultKindNames = {
+    "none",         "stuck_pickoff",     "invalid_reading",    "dropout",
+    "bias_jump",    "dead_torquer",      "saturated_torquer",  "spin_motor_failure"};
+
 [[nodiscard]] constexpr const char* to_string(FaultKind k) noexcept {
-  switch (k) {
-    case FaultKind::kNone: return "none";
-    case FaultKind::kStuckPickoff: return "stuck pickoff";
-    case FaultKind::kInvalidReading: return "invalid reading";
-    case FaultKind::kDropout: return "dropout";
-    case FaultKind::kBiasJump: return "bias jump";
-    case FaultKind::kDeadTorquer: return "dead torquer";
-    case FaultKind::kSaturatedTorquer: return "saturated torquer";
-    case FaultKind::kSpinMotorFailure: return "spin motor failure";
-  }
-  return "unknown fault";
+  const auto i = static_cast<std::size_t>(k);
+  return i < kFaultKindNames.size() ? kFaultKindNames[i] : "unknown fault";
 }
 
 // The fault kind's name in scenario files and logs ("stuck_pickoff"); "" for kNone or an
 // unknown value.
 [[nodiscard]] constexpr const char* fault_kind_name(FaultKind k) noexcept {
-  switch (k) {
-    case FaultKind::kStuckPickoff: return "stuck_pickoff";
-    case FaultKind::kInvalidReading: return "invalid_reading";
-    case FaultKind::kDropout: return "dropout";
-    case FaultKind::kBiasJump: return "bias_jump";
-    case FaultKind::kDeadTorquer: return "dead_torquer";
-    case FaultKind::kSaturatedTorquer: return "saturated_torquer";
-    case FaultKind::kSpinMotorFailure: return "spin_motor_failure";
-    default: return "";
-  }
+  return k == FaultKind::kNone ? "" : (static_cast<std::size_t>(k) < kFaultKindNames.size() ? to_string(k) : "");
 }
 
 // The bit of a fault kind in active-fault words.

@@ -72,6 +72,17 @@ template <class E, std::size_t N>
 struct IsArray<std::array<E, N>> : std::true_type {};
 }  // namespace field_detail
 
+// How many fields of Config have a member type that `Select` takes (constexpr).
+template <class Config, template <class> class Select>
+[[nodiscard]] constexpr std::size_t count_fields() noexcept {
+  std::size_t n = 0;
+  const Config c{};
+  visit_fields([&n](const Field&, const auto& m) { n += Select<std::decay_t<decltype(m)>>::value ? 1u : 0u; }, c);
+  return n;
+}
+template <class M>
+struct AnyField : std::true_type {};
+
 // Every floating-point number in `c` (nested structs included) is finite.
 template <class Config>
 [[nodiscard]] bool all_fields_finite(const Config& c) noexcept {
@@ -139,6 +150,8 @@ struct RealFields
     : std::bool_constant<std::is_floating_point_v<M> || field_detail::IsEigen<M>::value || kHasFieldTable<M>> {};
 template <class M>
 struct CountFields : std::bool_constant<std::is_integral_v<M> && !std::is_same_v<M, bool>> {};
+template <class M>
+struct SwitchFields : std::is_same<M, bool> {};
 
 // `from` in another scalar type, field by field (numbers cast, everything else copied).
 template <class To, class From>

@@ -393,7 +393,7 @@ def fmt_count(x):
 
 def model_section(res):
     if "model_double" not in res.ticks:
-        return ("*Pending: `component/include/gyro/gyro_model.hpp` (GyroModel<T>) was not present when "
+        return ("*Pending: `component/report/include/gyro/gyro_model.hpp` (GyroModel<T>) was not present when "
                 "these figures were made. scripts/bench.sh fills this section by itself once it exists.*")
     lines = ["| type | instructions per tick (mean) | per tick, sampled: min / median / max "
              "| first tick (coefficients computed) | over 1e6 ticks: median / 99.99 % / worst |",

@@ -2,8 +2,9 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS gyro_component gyro_port gyro_hil_stub EXPORT gyroTargets)
-install(DIRECTORY component/include/ port/include/ hil_stub/include/
+install(TARGETS gyro_exact gyro_model gyro_component gyro_port gyro_hil_stub EXPORT gyroTargets)
+install(DIRECTORY component/exact/include/ component/report/include/ component/flight/include/ port/include/
+                  hil_stub/include/ examples/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT gyroTargets NAMESPACE gyro:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/gyro)
 configure_package_config_file(cmake/gyroConfig.cmake.in

@@ -92,7 +92,7 @@ say "instructions per tick (callgrind; two run lengths, the difference is the pe
 echo "kind,ticks,instructions" > "$results/ticks.csv"
 kinds="advance_double advance_float advance_unchecked_double advance_lean_double advance_lean_float
        propagate_double propagate_double_100hz make_transition_double make_transition_double_100hz"
-if [ -f "$root/component/include/gyro/gyro_model.hpp" ]; then kinds="$kinds model_double model_float"; fi
+if [ -f "$root/component/report/include/gyro/gyro_model.hpp" ]; then kinds="$kinds model_double model_float"; fi
 for kind in $kinds; do
   for n in 10000 20000; do
     ir=$(count "tick.$kind.$n" "$bin/gyro_bench_driver" ticks "$kind" "$n")
@@ -100,7 +100,7 @@ for kind in $kinds; do
   done
 done
 
-if [ -f "$root/component/include/gyro/gyro_model.hpp" ]; then
+if [ -f "$root/component/report/include/gyro/gyro_model.hpp" ]; then
   say "component full tick: every 4999th of 1e6 ticks counted on its own"
   echo "type,sample,instructions" > "$results/model_samples.csv"
   for type in double float; do

@@ -267,7 +267,7 @@ report() {
   echo "| mutant | file | what it breaks | result | tests that failed / note | s |"
   echo "|---|---|---|---|---|---|"
   for i in "${!ids[@]}"; do
-    printf '| %s | %s | %s | %s | %s | %s |\n' "${ids[$i]}" "${files[$i]#component/include/gyro/}" \
+    printf '| %s | %s | %s | %s | %s | %s |\n' "${ids[$i]}" "${files[$i]#component/*/include/gyro/}" \
       "${meanings[$i]}" "${results[$i]}" "${details[$i]}" "${times[$i]}"
   done
   echo

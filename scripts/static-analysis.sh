@@ -28,7 +28,7 @@ failed=0
 
 # 1. Every header of the libraries (subfolders included: gyro/link/...) is in the analysed
 # translation unit.
-mapfile -t lib_headers < <(find component/include/gyro port/include/gyro hil_stub/include/gyro pil/include/gyro \
+mapfile -t lib_headers < <(find component/*/include/gyro port/include/gyro hil_stub/include/gyro examples/include/gyro pil/include/gyro \
   -name '*.hpp' | sort)
 echo "== headers in $tu"
 for h in "${lib_headers[@]}"; do
@@ -94,7 +94,8 @@ cppcheck_log="$build_dir/cppcheck.log"
 cppcheck_rc=0
 "$cppcheck" --enable=warning,performance,portability,style --inline-suppr --std=c++17 \
   --language=c++ --error-exitcode=1 --quiet \
-  -I component/include -I port/include -I hil_stub/include -I pil/include \
+  -I component/exact/include -I component/report/include -I component/flight/include -I port/include \
+  -I hil_stub/include -I examples/include -I pil/include \
   --suppress=missingIncludeSystem \
   --template='{file}:{line}:{column}: {severity}: {message} [{id}]' \
   "$tu" > "$cppcheck_log" 2>&1 || cppcheck_rc=$?

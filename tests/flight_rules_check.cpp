@@ -1,7 +1,8 @@
 // Compiled with -std=c++17 -fno-exceptions -fno-rtti -Werror: every public header of the
 // libraries, instantiated for float and double. Building this file is the check. It is also
 // the translation unit that scripts/static-analysis.sh runs clang-tidy and cppcheck on, which
-// requires every header under component/, port/, hil_stub/ and pil/ to be included here by name.
+// requires every header under component/, port/, hil_stub/, examples/ and pil/ to be included here by name.
+#include "gyro/arctangent.hpp"
 #include "gyro/attitude.hpp"
 #include "gyro/component_config.hpp"
 #include "gyro/component_types.hpp"

@@ -1,7 +1,7 @@
 // The gimbal plant in the limit where the device becomes the report's gyro: no gimbal
 // inertia, torques and friction about the gyro's own non-rolling axes (TorqueAxes::kGyro) on
 // its inertial rates, a free rotor. There the plant and GyroModel (the report's exact linear
-// step, component/include/gyro/gyro_model.hpp) solve the same motion, the model with the
+// step, component/report/include/gyro/gyro_model.hpp) solve the same motion, the model with the
 // torque held in each step's frame and the step's rotation composed per step: their gimbal
 // angles must agree to the model's step discretisation, second order in the step.
 #include <gtest/gtest.h>

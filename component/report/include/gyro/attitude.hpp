@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gyro/arctangent.hpp"
 #include "gyro/rotor_parameters.hpp"
 
 namespace gyro {
@@ -79,22 +80,29 @@ template <typename T>
   Vector3<T> gp;
   gp.noalias() = R_earth_to_body * spin_axis_earth;
   GimbalAngles<T> g;
-  g.pitch_rad = std::atan2(-gp(2), std::sqrt(gp(0) * gp(0) + gp(1) * gp(1)));  // |gp| = 1
-  g.yaw_rad = std::atan2(gp(1), gp(0));
+  g.pitch_rad = fixed_cost_atan2(-gp(2), std::sqrt(gp(0) * gp(0) + gp(1) * gp(1)));  // |gp| = 1
+  g.yaw_rad = fixed_cost_atan2(gp(1), gp(0));
   g.cosine_of_cone = gp(0);
   return g;
 }
 
 // True when R is finite and orthonormal within the scalar type's tolerance, with determinant
-// +1. R R^T is symmetric: six row dot products; the sign of row0 x row1 . row2 is det R.
+// +1. R R^T is symmetric: six row dot products; the sign of row0 x row1 . row2 is det R. Every
+// test is false on a NaN and an infinite entry makes a row's norm infinite, so non-finite
+// entries fail without a test of their own; no branch per test.
 template <typename T>
 [[nodiscard]] bool is_rotation(const Matrix3<T>& r) noexcept {
-  if (!all_finite(r)) return false;
-  const Vector3<T> r0 = r.row(0).transpose(), r1 = r.row(1).transpose(), r2 = r.row(2).transpose();
+  const T a0 = r(0, 0), a1 = r(0, 1), a2 = r(0, 2);
+  const T b0 = r(1, 0), b1 = r(1, 1), b2 = r(1, 2);
+  const T c0 = r(2, 0), c1 = r(2, 1), c2 = r(2, 2);
   const T tol = ScalarTraits<T>::kRotationTolerance;
-  const T worst = std::max({std::abs(r0.dot(r0) - T(1)), std::abs(r1.dot(r1) - T(1)), std::abs(r2.dot(r2) - T(1)),
-                            std::abs(r0.dot(r1)), std::abs(r0.dot(r2)), std::abs(r1.dot(r2))});
-  return worst <= tol && r0.cross(r1).dot(r2) > T(0);
+  const auto within = [tol](T e) noexcept { return static_cast<unsigned>(std::abs(e) <= tol); };
+  const unsigned unit = within(a0 * a0 + a1 * a1 + a2 * a2 - T(1)) & within(b0 * b0 + b1 * b1 + b2 * b2 - T(1)) &
+                        within(c0 * c0 + c1 * c1 + c2 * c2 - T(1));
+  const unsigned orthogonal = within(a0 * b0 + a1 * b1 + a2 * b2) & within(a0 * c0 + a1 * c1 + a2 * c2) &
+                              within(b0 * c0 + b1 * c1 + b2 * c2);
+  const T det = (a1 * b2 - a2 * b1) * c0 + (a2 * b0 - a0 * b2) * c1 + (a0 * b1 - a1 * b0) * c2;
+  return (unit & orthogonal & static_cast<unsigned>(det > T(0))) != 0u;
 }
 
 // Largest entry of R R^T - I: how far a matrix has drifted from a rotation.

@@ -78,6 +78,16 @@ template <typename T>
 }
 
 // Whether error_drift() depends on the gimbal angles (an erection term is set).
+// Whether any error source is set (none: the model's torque is the torquers' alone).
+template <typename T>
+[[nodiscard]] bool any_error_source(const GyroErrorSources<T>& e) noexcept {
+  const auto axis = [](const AxisErrorSources<T>& a) {
+    return a.static_drift_rad_s != T(0) || a.in_plane_erection_1_s != T(0) || a.cross_plane_erection_1_s != T(0) ||
+           a.g_sensitive_drift_rad_s != T(0) || a.torquer_cross_coupling != T(0) || a.coulomb_friction_rad_s != T(0);
+  };
+  return axis(e.pitch) || axis(e.yaw);
+}
+
 template <typename T>
 [[nodiscard]] bool drift_depends_on_gimbal(const GyroErrorSources<T>& e) noexcept {
   return e.pitch.in_plane_erection_1_s != T(0) || e.pitch.cross_plane_erection_1_s != T(0) ||

@@ -106,6 +106,23 @@ enum GyroModelFlag : std::uint32_t {
 };
 
 template <typename T>
+class GyroModel;
+
+// A body attitude found to be a rotation by GyroModel::check_body_attitude: the model's step
+// and correction take it without checking it again (a copy of a checked matrix is as good).
+template <typename T>
+class CheckedRotation {
+ public:
+  CheckedRotation() noexcept = default;  // the identity
+  [[nodiscard]] const Matrix3<T>& matrix() const noexcept { return R_; }
+
+ private:
+  friend class GyroModel<T>;
+  explicit CheckedRotation(const Matrix3<T>& R) noexcept : R_(R) {}
+  Matrix3<T> R_{Matrix3<T>::Identity()};
+};
+
+template <typename T>
 class GyroModel {
  public:
   // Validates and stores the configuration; refuses with the field's name. Leaves the gyro
@@ -116,6 +133,7 @@ class GyroModel {
     config_ = config;
     cos_cone_limit_ = std::cos(config.gimbal_cone_limit_rad);
     drift_needs_angles_ = drift_depends_on_gimbal(config.errors);
+    has_error_sources_ = any_error_source(config.errors);
     configured_ = true;
     uncaged_ = false;
     cache_valid_ = false;
@@ -128,7 +146,7 @@ class GyroModel {
                               const Vector2<T>& offset_rad = Vector2<T>::Zero()) noexcept {
     if (!configured_) return Status::kNotConfigured;
     if (!all_finite(body_rate_rad_s, offset_rad)) return Status::kNonFiniteInput;
-    if (!check_body_attitude(R_earth_to_body)) return Status::kInvalidRotation;
+    if (!is_rotation(R_earth_to_body)) return Status::kInvalidRotation;
     Quaternion<T> q_body(Matrix3<T>(R_earth_to_body.transpose()));  // body to earth
     Quaternion<T> q = q_body * step_rotation(offset_rad);
     q.normalize();
@@ -152,7 +170,7 @@ class GyroModel {
                                         const Vector2<T>& gimbal_rad) noexcept {
     if (!configured_) return Status::kNotConfigured;
     if (!all_finite(body_rate_rad_s, gimbal_rad)) return Status::kNonFiniteInput;
-    if (!check_body_attitude(R_earth_to_body)) return Status::kInvalidRotation;
+    if (!is_rotation(R_earth_to_body)) return Status::kInvalidRotation;
     Quaternion<T> q_body(Matrix3<T>(R_earth_to_body.transpose()));  // body to earth
     const Quaternion<T> yaw(Eigen::AngleAxis<T>(gimbal_rad(1), Vector3<T>::UnitZ()));
     const Quaternion<T> pitch(Eigen::AngleAxis<T>(gimbal_rad(0), Vector3<T>::UnitY()));
@@ -187,6 +205,23 @@ class GyroModel {
   // One step with the torquer torques held over dt: (T1 pitch axis, T2 yaw axis) of the gyro
   // (kGyro), or (inner, outer) about the gimbal axes (kGimbal).
   [[nodiscard]] Status step_torque(const GyroStepInput<T>& in, const Vector2<T>& torque_cmd) noexcept {
+    const Status st = check_step(in, torque_cmd);
+    if (st != Status::kOk) return st;
+    if (!is_rotation(in.R_earth_to_body)) return Status::kInvalidRotation;
+    return step_checked(in, in.R_earth_to_body, torque_cmd);
+  }
+
+  // The same with an attitude already checked (check_body_attitude) in place of
+  // in.R_earth_to_body, which is not read: one check per tick for a caller that also corrects.
+  [[nodiscard]] Status step_torque(const GyroStepInput<T>& in, const CheckedRotation<T>& attitude,
+                                   const Vector2<T>& torque_cmd) noexcept {
+    const Status st = check_step(in, torque_cmd);
+    if (st != Status::kOk) return st;
+    return step_checked(in, attitude.matrix(), torque_cmd);
+  }
+
+ private:
+  [[nodiscard]] Status check_step(const GyroStepInput<T>& in, const Vector2<T>& torque_cmd) const noexcept {
     if (!configured_) return Status::kNotConfigured;
     if (!uncaged_) return Status::kNotConfigured;
     if (!all_finite(in.dt_s, in.spin_hz, in.body_accel, torque_cmd, in.body_rate_rad_s)) {
@@ -194,19 +229,24 @@ class GyroModel {
     }
     if (!(in.dt_s > T(0))) return Status::kNonPositiveStep;
     if (in.spin_hz < T(0)) return Status::kNegativeAngularMomentum;
-    if (!check_body_attitude(in.R_earth_to_body)) return Status::kInvalidRotation;
+    return Status::kOk;
+  }
 
+  // step_torque() once its inputs are checked; R_earth_to_body is the end-of-step attitude.
+  [[nodiscard]] Status step_checked(const GyroStepInput<T>& in, const Matrix3<T>& R_earth_to_body,
+                                    const Vector2<T>& torque_cmd) noexcept {
     const RotorParameters<T> prm{config_.pitch_inertia, config_.yaw_inertia, config_.friction,
                                  angular_momentum(in.spin_hz, config_.spin_inertia)};
     if (!cache_valid_ || !(prm.angular_momentum == cached_h_) || !(in.dt_s == transition_.dt_s)) {
+      // One validation and one set of rate-matrix terms for the transition and the map.
+      const Status valid = validate(prm);
+      if (valid != Status::kOk) return valid;
+      const detail::RateMatrixTerms<T> terms = detail::rate_matrix_terms(prm);
       RotorTransition<T> tr;
-      const Status st = make_transition(prm, in.dt_s, tr);
+      const Status st = detail::make_transition_from_terms(prm, terms, in.dt_s, tr);
       if (st != Status::kOk) return st;
-      NutationMap<T> map;
-      const Status ms = make_nutation_map(prm, map);
-      if (ms != Status::kOk) return ms;
       transition_ = tr;
-      nutation_map_ = map;
+      nutation_map_ = detail::nutation_map_from_terms(prm, terms);
       cached_h_ = prm.angular_momentum;
       cache_valid_ = true;
     }
@@ -214,20 +254,12 @@ class GyroModel {
     GimbalFrame<T> end_frame = frame_;
     T frame_roll{};
     const Vector2<T> rotor_torque = (config_.torquer_axes == TorquerAxes::kGimbal)
-                                        ? torque_on_gyro_axes(in, torque_cmd, end_frame, frame_roll)
+                                        ? torque_on_gyro_axes(in, R_earth_to_body, torque_cmd, end_frame, frame_roll)
                                         : torque_cmd;
-    if (drift_needs_angles_) (void)refresh_angles();  // otherwise they enter multiplied by zero
-    const Vector2<T> gimbal(gimbal_.pitch_rad, gimbal_.yaw_rad);
-    const Vector2<T> drift = error_drift(config_.errors, gimbal, in.body_accel, config_.gravity);
-    Vector2<T> torque = cross_coupled_torque(config_.errors, rotor_torque) +
-                        torque_for_rate_frictionless(prm.angular_momentum, drift);
-    // Coulomb friction against the steady precession of all the other torques (none when
-    // f = H = 0: then there is no precession, and a drift would be no torque anyway).
-    if (nutation_map_.has_steady) {
-      Vector2<T> precession;
-      precession.noalias() = nutation_map_.steady_from_torque * torque;
-      torque += torque_for_rate_frictionless(prm.angular_momentum, coulomb_drift(config_.errors, precession));
-    }
+    // The error sources as torques (none configured: the torquers' alone, as the sums below
+    // would give with every coefficient zero).
+    const Vector2<T> torque = has_error_sources_ ? with_error_sources(in, rotor_torque, prm.angular_momentum)
+                                                 : rotor_torque;
 
     // Finite inputs can still overflow here (cross-coupling, drift torques of huge spins).
     if (!all_finite(torque)) return Status::kNumericalOverflow;
@@ -241,7 +273,7 @@ class GyroModel {
 
     Quaternion<T> q = q_gyro_to_earth_ * step_rotation(s.angle_rad);
     renormalize(q);
-    const GimbalAngles<T> g = gimbal_angles(in.R_earth_to_body, spin_axis_in_earth(q));
+    const GimbalAngles<T> g = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q));
     if (!all_finite(g.pitch_rad, g.yaw_rad)) return Status::kNumericalOverflow;
 
     std::uint32_t step_flags = gimbal_flag(g);
@@ -256,34 +288,49 @@ class GyroModel {
     angles_stale_ = false;
     flags_ = step_flags;
     applied_torque_ = torque;
-    R_earth_to_body_ = in.R_earth_to_body;
+    R_earth_to_body_ = R_earth_to_body;
     frame_ = end_frame;
     frame_roll_ = frame_roll;
     have_frame_roll_ = true;
     return Status::kOk;
   }
 
+ public:
   // Turns the gyro by small (pitch, yaw) angles about its own axes and re-reads the gimbal
   // angles with `R_earth_to_body`: the correction step of an estimator built on the model.
   [[nodiscard]] Status correct_attitude(const Vector2<T>& angle_rad, const Matrix3<T>& R_earth_to_body) noexcept {
     if (!uncaged_) return Status::kNotConfigured;
     if (!all_finite(angle_rad)) return Status::kNonFiniteInput;
-    if (!check_body_attitude(R_earth_to_body)) return Status::kInvalidRotation;
+    if (!is_rotation(R_earth_to_body)) return Status::kInvalidRotation;
+    apply_correction(angle_rad, R_earth_to_body);
+    return Status::kOk;
+  }
+  [[nodiscard]] Status correct_attitude(const Vector2<T>& angle_rad, const CheckedRotation<T>& attitude) noexcept {
+    if (!uncaged_) return Status::kNotConfigured;
+    if (!all_finite(angle_rad)) return Status::kNonFiniteInput;
+    apply_correction(angle_rad, attitude.matrix());
+    return Status::kOk;
+  }
+
+ private:
+  void apply_correction(const Vector2<T>& angle_rad, const Matrix3<T>& R_earth_to_body) noexcept {
     Quaternion<T> q = q_gyro_to_earth_ * step_rotation(angle_rad);
     renormalize(q);
     q_gyro_to_earth_ = q;
     R_earth_to_body_ = R_earth_to_body;
     angles_stale_ = true;  // read afresh when asked for (or by the next step)
-    return Status::kOk;
   }
+
+ public:
 
   // The same for a change of the gimbal angles (pitch, yaw): the gyro turns by pitch about the
   // inner gimbal axis and by yaw about body z (a spin-axis turn of yaw * cos th about z_I),
   // resolved on its own axes with the gimbal frame of the last step.
-  [[nodiscard]] Status correct_gimbal_angles(const Vector2<T>& gimbal_rad, const Matrix3<T>& R_earth_to_body) noexcept {
+  template <typename Attitude>  // Matrix3<T> or CheckedRotation<T>
+  [[nodiscard]] Status correct_gimbal_angles(const Vector2<T>& gimbal_rad, const Attitude& R_earth_to_body) noexcept {
     if (!all_finite(gimbal_rad)) return Status::kNonFiniteInput;
     const Vector2<T> on_gimbal(gimbal_rad(0), gimbal_rad(1) * frame_.cos_pitch);
-    return correct_attitude(frame_.gimbal_to_gyro * on_gimbal, R_earth_to_body);
+    return correct_attitude(Vector2<T>(frame_.gimbal_to_gyro * on_gimbal), R_earth_to_body);
   }
 
   [[nodiscard]] const Quaternion<T>& attitude_gyro_to_earth() const noexcept { return q_gyro_to_earth_; }
@@ -315,14 +362,11 @@ class GyroModel {
   [[nodiscard]] const GyroModelConfig<T>& config() const noexcept { return config_; }
   [[nodiscard]] bool uncaged() const noexcept { return uncaged_; }
 
-  // Whether R is a rotation (gyro/attitude.hpp's is_rotation). The last matrix found to be one
-  // is remembered: the same matrix handed in again (by step and correction in one tick) is
-  // compared entry by entry instead of being checked again.
-  [[nodiscard]] bool check_body_attitude(const Matrix3<T>& R) noexcept {
-    if (have_checked_rotation_ && (R.array() == checked_rotation_.array()).all()) return true;
+  // Whether R is a rotation (gyro/attitude.hpp's is_rotation); if so, `out` receives it, for
+  // the step and correction of the same tick to take without checking it again.
+  [[nodiscard]] static bool check_body_attitude(const Matrix3<T>& R, CheckedRotation<T>& out) noexcept {
     if (!is_rotation(R)) return false;
-    checked_rotation_ = R;
-    have_checked_rotation_ = true;
+    out = CheckedRotation<T>(R);
     return true;
   }
 
@@ -353,10 +397,11 @@ class GyroModel {
   // follows frame_roll is not carried: it is a derivative of estimated rates, and with real
   // pickoff noise it cost more than it gave (docs/gimbal-geometry.md, "Spin motor").
   // `end_frame` receives the frame at the end of the step (spin axis of its start).
-  [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Vector2<T>& torquer,
-                                               GimbalFrame<T>& end_frame, T& frame_roll) const noexcept {
+  [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Matrix3<T>& R_earth_to_body,
+                                               const Vector2<T>& torquer, GimbalFrame<T>& end_frame,
+                                               T& frame_roll) const noexcept {
     const GimbalFrame<T>& start = frame_;  // the last step's end (its spin axis: within a tick's turn)
-    end_frame = gimbal_frame(gyro_to_body(in.R_earth_to_body));
+    end_frame = gimbal_frame(gyro_to_body(R_earth_to_body));
     const Vector2<T> rate_on_gimbal = start.gimbal_to_gyro.transpose() * rate_rad_s_;
     const Vector2<T> body_on_gimbal = body_rate_on_gimbal(start, in.body_rate_rad_s);
     frame_roll = inner_gimbal_roll(start, in.body_rate_rad_s, rate_on_gimbal, body_on_gimbal);
@@ -367,6 +412,23 @@ class GyroModel {
     // needs (J0 frame_roll) (w_z, -w_y) more, taken off the torque (a quarter turn of w).
     t += config_.spin_inertia * frame_roll * Vector2<T>(-rate_rad_s_(1), rate_rad_s_(0));
     return t;
+  }
+
+  // The torque that carries the error sources' drifts and the torquer's cross-coupling.
+  [[nodiscard]] Vector2<T> with_error_sources(const GyroStepInput<T>& in, const Vector2<T>& rotor_torque,
+                                              T h) const noexcept {
+    if (drift_needs_angles_) (void)refresh_angles();  // otherwise they enter multiplied by zero
+    const Vector2<T> gimbal(gimbal_.pitch_rad, gimbal_.yaw_rad);
+    const Vector2<T> drift = error_drift(config_.errors, gimbal, in.body_accel, config_.gravity);
+    Vector2<T> torque = cross_coupled_torque(config_.errors, rotor_torque) + torque_for_rate_frictionless(h, drift);
+    // Coulomb friction against the steady precession of all the other torques (none when
+    // f = H = 0: then there is no precession, and a drift would be no torque anyway).
+    if (nutation_map_.has_steady) {
+      Vector2<T> precession;
+      precession.noalias() = nutation_map_.steady_from_torque * torque;
+      torque += torque_for_rate_frictionless(h, coulomb_drift(config_.errors, precession));
+    }
+    return torque;
   }
 
   [[nodiscard]] static T clamp(T v, T limit) noexcept {
@@ -394,8 +456,7 @@ class GyroModel {
   mutable std::uint32_t flags_{0};
   mutable bool angles_stale_{false};
   bool drift_needs_angles_{false};
-  Matrix3<T> checked_rotation_{Matrix3<T>::Identity()};
-  bool have_checked_rotation_{false};
+  bool has_error_sources_{false};
   Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};  // body at the start of the next step
   GimbalFrame<T> frame_{};           // gimbal frame at the end of the last step
   RotorTransition<T> transition_{};  // cached while H and dt stay the same

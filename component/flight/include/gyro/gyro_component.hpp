@@ -2,8 +2,9 @@
 // tick it reads the pickoffs through the port, validates them, predicts the gyro with the
 // exact dynamics, decides the mode, computes the torque law and writes the torquer.
 //
-// Guarantees: no heap, no exceptions, no RTTI; every tick does the same bounded work (no
-// loop depends on data); the same inputs give bit-identical outputs; once active no input
+// Guarantees: no heap, no exceptions, no RTTI; every tick's work is bounded (every loop has a
+// fixed bound; a new spin readback rebuilds the estimator's transition, the costliest tick:
+// docs/performance.md measures each); the same inputs give bit-identical outputs; once active no input
 // stops a tick (unusable fields are ignored, flagged and counted); a refused call (before
 // activation, or configure() while active) leaves the state as it was, flagged and counted.
 #pragma once
@@ -166,13 +167,12 @@ class GyroComponent {
   [[nodiscard]] bool accept_navigation(const GuidanceInput<T>& in, std::uint32_t& flags) noexcept {
     const bool usable = in.nav_valid && all_finite(in.body_rate_rad_s) &&
                         in.body_rate_rad_s.cwiseAbs().maxCoeff() <= config_.max_body_rate_rad_s &&
-                        estimator_.check_body_attitude(in.R_earth_to_body);
+                        GyroModel<T>::check_body_attitude(in.R_earth_to_body, attitude_);
     if (!usable) {
       flags |= kNavInvalid;
       if (in.nav_valid) flags |= kCommandRejected;  // marked valid, yet unusable
       return false;
     }
-    R_earth_to_body_ = in.R_earth_to_body;
     body_rate_prev_ = body_rate_;
     body_rate_ = in.body_rate_rad_s;
     return true;
@@ -219,7 +219,7 @@ class GyroComponent {
 
   // The report's uncaging of the estimator at the measured gimbal angles, rates from the body.
   [[nodiscard]] bool start_estimator() noexcept {
-    if (estimator_.uncage_on_gimbal(R_earth_to_body_, body_rate_, measured_) != Status::kOk) return false;
+    if (estimator_.uncage_on_gimbal(attitude_.matrix(), body_rate_, measured_) != Status::kOk) return false;
     predicted_ = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
     predicted_cos_cone_ = estimator_.gimbal_cosine_of_cone();
     return true;
@@ -236,10 +236,9 @@ class GyroComponent {
     }
     GyroStepInput<T> s;
     s.dt_s = config_.tick_s * static_cast<T>(elapsed);
-    s.R_earth_to_body = R_earth_to_body_;
     s.spin_hz = spin;
     s.body_rate_rad_s = T(0.5) * (body_rate_prev_ + body_rate_);
-    if (estimator_.step_torque(s, torque_held_) != Status::kOk) {
+    if (estimator_.step_torque(s, attitude_, torque_held_) != Status::kOk) {
       estimator_ready_ = false;  // re-initialised from the next good reading
       return;
     }
@@ -255,7 +254,7 @@ class GyroComponent {
                                         config_.residual_persistence_ticks)) {
       flags |= kResidualFault;
     }
-    (void)estimator_.correct_gimbal_angles(config_.estimator_gain * residual_, R_earth_to_body_);
+    (void)estimator_.correct_gimbal_angles(Vector2<T>(config_.estimator_gain * residual_), attitude_);
   }
 
   // The persistence monitors (gyro/persistence.hpp); true when any fault condition has lasted
@@ -408,13 +407,25 @@ class GyroComponent {
     return Vector2<T>(clamp(out(0), config_.max_torque), clamp(out(1), config_.max_torque));
   }
 
+  // One saturating count per raised flag: a loop over the raised flags only (at most
+  // kComponentFlagCount passes; none on a clean tick).
   void count(std::uint32_t flags) noexcept {
-    for (int i = 0; i < kComponentFlagCount; ++i) {
-      if ((flags & (1u << static_cast<unsigned>(i))) != 0u) {
-        std::uint32_t& c = telemetry_.counters[static_cast<std::size_t>(i)];
-        c = sat_inc(c);
-      }
+    std::uint32_t left = flags & ((1u << static_cast<unsigned>(kComponentFlagCount)) - 1u);
+    while (left != 0u) {
+      const std::uint32_t lowest = left & (~left + 1u);  // the lowest raised flag
+      std::uint32_t& c = telemetry_.counters[bit_index(lowest)];
+      c = sat_inc(c);
+      left ^= lowest;
     }
+  }
+  [[nodiscard]] static std::size_t bit_index(std::uint32_t single_bit) noexcept {
+    std::size_t i = 0;  // five halvings: a fixed cost, without compiler builtins
+    if ((single_bit & 0xFFFF0000u) != 0u) i += 16u;
+    if ((single_bit & 0xFF00FF00u) != 0u) i += 8u;
+    if ((single_bit & 0xF0F0F0F0u) != 0u) i += 4u;
+    if ((single_bit & 0xCCCCCCCCu) != 0u) i += 2u;
+    if ((single_bit & 0xAAAAAAAAu) != 0u) i += 1u;
+    return i;
   }
 
   void publish(std::uint64_t tick, std::uint32_t flags, const Vector2<T>& rate_cmd, T spin) noexcept {
@@ -439,10 +450,12 @@ class GyroComponent {
   // last spin, as the spin readback rarely changes.
   [[nodiscard]] T nutation_beta(T spin) noexcept {
     if (!(spin == nutation_spin_)) {
+      // The spin is finite and >= 0 and the inertias and friction were checked at configure():
+      // the rate-matrix terms alone (compute_modes() without its checks and other modes).
       const RotorParameters<T> p{config_.pitch_inertia, config_.yaw_inertia, config_.friction,
                                  angular_momentum(spin, config_.spin_inertia)};
-      RotorModes<T> m;
-      nutation_beta_ = (compute_modes(p, m) == Status::kOk) ? m.beta_rad_s : T(0);
+      const T beta_sq = detail::rate_matrix_terms(p).beta_sq;
+      nutation_beta_ = (beta_sq > T(0) && std::isfinite(beta_sq)) ? std::sqrt(beta_sq) : T(0);
       nutation_spin_ = spin;
       const T per_tick = nutation_beta_ * config_.tick_s;  // nutation phase a tick
       shaper_spacing_ = 0u;
@@ -467,7 +480,7 @@ class GyroComponent {
   GyroMode mode_{GyroMode::kIdle};
   GyroModel<T> estimator_{};
   bool estimator_ready_{false};
-  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};
+  CheckedRotation<T> attitude_{};  // the last usable body attitude (earth to body)
   Vector3<T> body_rate_{Vector3<T>::Zero()};       // the last usable body rate (p, q, r)
   Vector3<T> body_rate_prev_{Vector3<T>::Zero()};  // the one before it
   Vector2<T> slew_cmd_{Vector2<T>::Zero()};  // the last usable slew command

@@ -37,14 +37,27 @@ struct NutationMap {
   bool saturated{false};      // the transient is too large to represent
 };
 
+namespace detail {
+template <typename T>
+[[nodiscard]] NutationMap<T> nutation_map_from_terms(const RotorParameters<T>& prm, const RateMatrixTerms<T>& m) noexcept;
+}  // namespace detail
+
 template <typename T>
 [[nodiscard]] Status make_nutation_map(const RotorParameters<T>& prm, NutationMap<T>& out) noexcept {
   const Status st = validate(prm);
   if (st != Status::kOk) return st;
+  out = detail::nutation_map_from_terms(prm, detail::rate_matrix_terms(prm));
+  return Status::kOk;
+}
+
+namespace detail {
+
+// make_nutation_map() with `prm` validated and its rate-matrix terms `m` at hand.
+template <typename T>
+[[nodiscard]] NutationMap<T> nutation_map_from_terms(const RotorParameters<T>& prm, const RateMatrixTerms<T>& m) noexcept {
   NutationMap<T> map;
   const T f = prm.friction, h = prm.angular_momentum;
   const T den = f * f + h * h;
-  const detail::RateMatrixTerms<T> m = detail::rate_matrix_terms(prm);
   if (den > T(0) && m.omega0_sq > T(0)) {
     map.has_steady = true;
     map.has_transient = true;
@@ -78,9 +91,10 @@ template <typename T>
     map.envelope = std::numeric_limits<T>::max();
     map.saturated = true;
   }
-  out = map;
-  return Status::kOk;
+  return map;
 }
+
+}  // namespace detail
 
 // Per-axis amplitude (rad) of the nutation that `rate_rad_s` excites under a constant
 // `torque`, from a map made for the rotor. Inputs are assumed finite (callers check them);

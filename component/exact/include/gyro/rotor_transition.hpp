@@ -170,6 +170,12 @@ template <typename T>
 
 }  // namespace detail
 
+namespace detail {
+template <typename T>
+[[nodiscard]] Status make_transition_from_terms(const RotorParameters<T>& prm, const RateMatrixTerms<T>& m, T dt_s,
+                                                RotorTransition<T>& out) noexcept;
+}  // namespace detail
+
 // Builds the exact transition of `prm` over `dt_s`. Rejects invalid parameters, dt <= 0
 // and any result that would not be finite; `out` is untouched unless Status::kOk.
 template <typename T>
@@ -177,9 +183,18 @@ template <typename T>
                                      RotorTransition<T>& out) noexcept {
   const Status st = validate(prm);
   if (st != Status::kOk) return st;
+  return detail::make_transition_from_terms(prm, detail::rate_matrix_terms(prm), dt_s, out);
+}
+
+namespace detail {
+
+// make_transition() with `prm` validated and its rate-matrix terms `m` at hand (a caller that
+// also needs them for the nutation map computes them once).
+template <typename T>
+[[nodiscard]] Status make_transition_from_terms(const RotorParameters<T>& prm, const RateMatrixTerms<T>& m, T dt_s,
+                                                RotorTransition<T>& out) noexcept {
   if (!std::isfinite(dt_s)) return Status::kNonFiniteInput;
   if (!(dt_s > T(0))) return Status::kNonPositiveStep;
-  const detail::RateMatrixTerms<T> m = detail::rate_matrix_terms(prm);
   const T t = dt_s;
   const T a = m.alpha * t;
   const T b = m.beta_sq * t * t;
@@ -211,29 +226,38 @@ template <typename T>
   return Status::kOk;
 }
 
-// Advances `state` by the transition's step under constant `torque`: a fixed, small
-// amount of work (four 2x2 products). Non-finite input or output leaves `state` as it was.
+}  // namespace detail
+
+namespace detail {
+
+// advance()'s cold path: which refusal (kept out of line, so that advance() inlines).
 template <typename T>
-[[nodiscard]] Status advance(const RotorTransition<T>& tr, const Vector2<T>& torque,
-                             RotorState<T>& state) noexcept {
-  // Written out: the same products Eigen would do, without calls the compiler may not inline.
+[[nodiscard]] __attribute__((noinline, cold)) Status advance_refusal(const Vector2<T>& torque,
+                                                                   const RotorState<T>& state) noexcept {
+  return all_finite(torque, state.angle_rad, state.rate_rad_s) ? Status::kNumericalOverflow : Status::kNonFiniteInput;
+}
+
+}  // namespace detail
+
+// Advances `state` by the transition's step under constant `torque`: four 2x2 products and
+// one finiteness test (about 40 instructions on x86-64). Non-finite input, or outputs too
+// large to represent (within a factor 4 of the largest finite value), leave `state` as it was.
+template <typename T>
+[[nodiscard]] inline Status advance(const RotorTransition<T>& tr, const Vector2<T>& torque, RotorState<T>& state) noexcept {
+  // Column by column (Eigen's matrices are column-major): in double, pairs of products in one
+  // register each; written out, without calls the compiler may not inline.
   const T w0 = state.rate_rad_s(0), w1 = state.rate_rad_s(1), t0 = torque(0), t1 = torque(1);
-  const Matrix2<T>& ar = tr.angle_from_rate;
-  const Matrix2<T>& at = tr.angle_from_torque;
-  const Matrix2<T>& rr = tr.rate_from_rate;
-  const Matrix2<T>& rt = tr.rate_from_torque;
-  const T a0 = state.angle_rad(0) + ar(0, 0) * w0 + ar(0, 1) * w1 + at(0, 0) * t0 + at(0, 1) * t1;
-  const T a1 = state.angle_rad(1) + ar(1, 0) * w0 + ar(1, 1) * w1 + at(1, 0) * t0 + at(1, 1) * t1;
-  const T r0 = rr(0, 0) * w0 + rr(0, 1) * w1 + rt(0, 0) * t0 + rt(0, 1) * t1;
-  const T r1 = rr(1, 0) * w0 + rr(1, 1) * w1 + rt(1, 0) * t0 + rt(1, 1) * t1;
+  const Vector2<T> angle = state.angle_rad + tr.angle_from_rate.col(0) * w0 + tr.angle_from_rate.col(1) * w1 +
+                           tr.angle_from_torque.col(0) * t0 + tr.angle_from_torque.col(1) * t1;
+  const Vector2<T> rate = tr.rate_from_rate.col(0) * w0 + tr.rate_from_rate.col(1) * w1 +
+                          tr.rate_from_torque.col(0) * t0 + tr.rate_from_torque.col(1) * t1;
   // One test covers inputs and outputs: every input enters every output of its row with a
-  // coefficient, and a non-finite input times any coefficient (0 included) is non-finite.
-  if (!all_finite(a0, a1, r0, r1)) {
-    return all_finite(torque, state.angle_rad, state.rate_rad_s) ? Status::kNumericalOverflow
-                                                                 : Status::kNonFiniteInput;
-  }
-  state.angle_rad = Vector2<T>(a0, a1);
-  state.rate_rad_s = Vector2<T>(r0, r1);
+  // coefficient, a non-finite input times any coefficient (0 included) is non-finite, and so
+  // is any sum that includes one.
+  const Vector2<T> sum = angle + rate;
+  if (!std::isfinite(sum(0) + sum(1))) return detail::advance_refusal(torque, state);
+  state.angle_rad = angle;
+  state.rate_rad_s = rate;
   return Status::kOk;
 }
 

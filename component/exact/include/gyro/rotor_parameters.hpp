@@ -46,11 +46,7 @@ template <typename T>
 }
 template <typename T, int R, int C>
 [[nodiscard]] bool all_finite(const Eigen::Matrix<T, R, C>& m) noexcept {
-  T probe = T(0);
-  for (Eigen::Index c = 0; c < m.cols(); ++c) {
-    for (Eigen::Index r = 0; r < m.rows(); ++r) probe += m(r, c) * T(0);
-  }
-  return probe == T(0);
+  return (m * T(0)).sum() == T(0);  // x * 0 is 0 when finite, else NaN; Eigen unrolls the sum
 }
 template <typename A, typename B, typename... Rest>
 [[nodiscard]] bool all_finite(const A& a, const B& b, const Rest&... rest) noexcept {

@@ -1,0 +1,111 @@
+// The rare branches of the attitude pieces (gyro/attitude.hpp, gyro/gimbal_geometry.hpp),
+// each against an independent reference: the exact step rotation across its series edge, in
+// its closed form and where the squares of its angles overflow; the gimbal frame at gimbal
+// lock, where the yaw is undefined and the outer torquer has no authority left.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+
+#include "gyro/attitude.hpp"
+#include "gyro/gimbal_geometry.hpp"
+
+namespace gyro {
+namespace {
+
+// Eigen's angle-axis quaternion in long double, for a rotation vector (0, th, ps).
+Eigen::Quaternion<long double> angle_axis_reference(double th, double ps) {
+  const long double a = std::hypot(static_cast<long double>(th), static_cast<long double>(ps));
+  const Eigen::Matrix<long double, 3, 1> axis(0.0L, static_cast<long double>(th) / a, static_cast<long double>(ps) / a);
+  return Eigen::Quaternion<long double>(Eigen::AngleAxis<long double>(a, axis));
+}
+
+// The series is used up to a rotation of kSmallRotation = 0.05 rad (half-angle 0.025), the
+// closed form beyond: both must be the rotation of their angle to a few ulps, at the edge, on
+// either side of it, and far from it.
+TEST(StepRotation, GivenAnglesAcrossTheSeriesEdgeAndBeyondThenItIsTheRotationOfTheirAngleToRounding) {
+  const double edge = ScalarTraits<double>::kSmallRotation;
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (const double angle : {1e-8, 1e-3, 0.02, std::nextafter(edge, 0.0), edge, std::nextafter(edge, 1.0), 0.07, 0.15,
+                             0.3, 1.0, 3.0}) {
+    for (const Vector2<double>& dir : {Vector2<double>(1.0, 0.0), Vector2<double>(0.6, -0.8)}) {
+      const double th = angle * dir(0), ps = angle * dir(1);
+      SCOPED_TRACE(::testing::Message() << "angle " << angle << " (" << th << ", " << ps << ")");
+      const Quaternion<double> q = step_rotation(Vector2<double>(th, ps));
+      const Eigen::Quaternion<long double> r = angle_axis_reference(th, ps);
+      // w = cos(h) to a few ulps of 1 (near h = pi/2 the rounding of h itself shows);
+      // the axis part sin(h)/(2h) (th, ps) to a few ulps of itself, however small.
+      const auto near = [eps](double got, long double want) {
+        return std::abs(static_cast<long double>(got) - want) <= 4 * eps * std::abs(want);
+      };
+      EXPECT_LE(std::abs(static_cast<long double>(q.w()) - r.w()), 4 * eps) << q.w() - static_cast<double>(r.w());
+      EXPECT_EQ(q.x(), 0.0);
+      EXPECT_TRUE(near(q.y(), r.y())) << q.y() - static_cast<double>(r.y());
+      EXPECT_TRUE(near(q.z(), r.z())) << q.z() - static_cast<double>(r.z());
+    }
+  }
+}
+
+// Angles whose squares overflow (beyond 1.3e154 rad) take the half angles without squaring:
+// still a unit quaternion about the axis (0, th, ps). (At such angles one ulp is many turns:
+// only the axis and the norm mean anything.)
+TEST(StepRotation, GivenAnglesWhoseSquaresOverflowThenAUnitQuaternionAboutTheirAxis) {
+  for (const double scale : {1e150, 1e154, 1e155, 1e200, 1e307}) {
+    SCOPED_TRACE(scale);
+    const double th = 0.6 * scale, ps = -0.8 * scale;
+    const Quaternion<double> q = step_rotation(Vector2<double>(th, ps));
+    ASSERT_TRUE(q.coeffs().allFinite()) << q.coeffs().transpose();
+    EXPECT_NEAR(q.norm(), 1.0, 1e-15);
+    EXPECT_EQ(q.x(), 0.0);
+    // (y, z) along (0.6, -0.8): the cross product vanishes (or both are zero at sin = 0).
+    EXPECT_NEAR(q.y() * -0.8 - q.z() * 0.6, 0.0, 1e-15);
+  }
+}
+
+// The spin axis along body z (pitch 90 deg, nose-up): the yaw is undefined, so the frame
+// takes yaw zero; the outer torquer's cos th is held at kMinCosPitch instead of dividing by
+// zero. Built from exact matrix entries, so that cos th is exactly zero.
+TEST(GimbalFrameLock, GivenTheSpinAxisExactlyAlongBodyZThenTheFrameIsFiniteWithYawZeroAndCosPitchAtItsGuard) {
+  Matrix3<double> gyro_to_body;
+  gyro_to_body.col(0) = Vector3<double>(0.0, 0.0, -1.0);  // x: pitch +90 deg
+  gyro_to_body.col(1) = Vector3<double>(0.0, 1.0, 0.0);
+  gyro_to_body.col(2) = Vector3<double>(1.0, 0.0, 0.0);
+  ASSERT_TRUE(is_rotation(gyro_to_body));
+  const GimbalFrame<double> f = gimbal_frame(gyro_to_body);
+  EXPECT_EQ(f.cos_pitch, kMinCosPitch<double>);
+  EXPECT_EQ(f.sin_pitch, 1.0);
+  EXPECT_EQ(f.y_inner_body, Vector3<double>(0.0, 1.0, 0.0));
+  EXPECT_EQ(f.z_inner_body, Vector3<double>(1.0, 0.0, 0.0)) << "x cross y_I";
+  EXPECT_EQ(f.gimbal_to_gyro, Matrix2<double>::Identity());
+  const Vector2<double> on_rotor = rotor_torque_from_torquers(f, Vector2<double>(0.01, 0.02));
+  EXPECT_EQ(on_rotor, Vector2<double>(0.01, 0.02 / kMinCosPitch<double>));
+
+  const GimbalFrame<double> at = gimbal_frame_at(Vector2<double>(kPi<double> / 2, 0.0));
+  EXPECT_EQ(at.cos_pitch, kMinCosPitch<double>) << "cos(pi/2) rounds to 6e-17, below the guard";
+  EXPECT_TRUE(all_finite(rotor_torque_from_torquers(at, Vector2<double>(0.01, 0.02))));
+}
+
+// Away from the lock the frame read off a gyro's axes is the frame at its gimbal angles: the
+// spin axis turned by pitch about y, then yaw about z (Eigen's active rotations), no twist.
+TEST(GimbalFrameLock, GivenAGyroOnItsGimbalsThenTheFrameOfItsAxesIsTheFrameAtItsAngles) {
+  for (const Vector2<double>& g : {Vector2<double>(0.3, -0.7), Vector2<double>(-1.2, 2.5), Vector2<double>(1.5, 0.1)}) {
+    SCOPED_TRACE(g.transpose());
+    const Matrix3<double> gyro_to_body = (Eigen::AngleAxis<double>(g(1), Vector3<double>::UnitZ()) *
+                                          Eigen::AngleAxis<double>(g(0), Vector3<double>::UnitY()))
+                                             .toRotationMatrix();
+    const GimbalFrame<double> f = gimbal_frame(gyro_to_body);
+    const GimbalFrame<double> at = gimbal_frame_at(g);
+    EXPECT_NEAR(f.cos_pitch, std::cos(g(0)), 1e-15);
+    EXPECT_NEAR(at.cos_pitch, std::cos(g(0)), 1e-15);
+    EXPECT_NEAR(f.sin_pitch, std::sin(g(0)), 1e-15);
+    EXPECT_NEAR(at.sin_pitch, std::sin(g(0)), 1e-15);
+    EXPECT_LT((f.spin_axis_body - at.spin_axis_body).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((f.y_inner_body - at.y_inner_body).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((f.z_inner_body - at.z_inner_body).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((f.gimbal_to_gyro - Matrix2<double>::Identity()).cwiseAbs().maxCoeff(), 1e-15);
+  }
+}
+
+}  // namespace
+}  // namespace gyro

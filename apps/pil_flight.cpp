@@ -8,6 +8,8 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "gyro/link/gyro_link_messages.hpp"
 #include "gyro/pil/harness.hpp"
@@ -21,9 +23,43 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr std::array<std::string_view, 12> kPilColumns = {
-    "pil_ran",      "pil_step_clocks", "pil_step_instructions", "pil_overruns",    "pil_skipped",    "pil_readings",
-    "pil_timeouts", "pil_bus_errors",  "pil_duplicates",        "pil_frames_lost", "pil_crc_errors", "pil_wire_faults"};
+// What the PIL columns of one CSV row are made of.
+struct PilRow {
+  bool ran{false};
+  std::uint64_t step_clocks{0};
+  double instructions_per_clock{0};
+  pil::TickOut report{};
+  std::uint32_t wire_faults{0};
+};
+
+// The PIL columns, each name with its value: f(name, value). The one list the header and the
+// rows are made from.
+template <typename F>
+void for_each_pil_column(const PilRow& p, F&& f) {
+  const pil::TickOut& r = p.report;
+  const auto instructions = static_cast<double>(p.step_clocks) * p.instructions_per_clock;
+  f("pil_ran", std::uint64_t{p.ran ? 1u : 0u});
+  f("pil_step_clocks", p.ran ? p.step_clocks : 0u);
+  f("pil_step_instructions", p.ran ? static_cast<std::uint64_t>(std::llround(instructions)) : 0u);
+  f("pil_overruns", std::uint64_t{r.overruns});
+  f("pil_skipped", std::uint64_t{r.skipped});
+  f("pil_readings", std::uint64_t{r.port.readings});
+  f("pil_timeouts", std::uint64_t{r.port.timeouts});
+  f("pil_bus_errors", std::uint64_t{r.port.bus_errors});
+  f("pil_duplicates", std::uint64_t{r.port.duplicates});
+  f("pil_frames_lost", std::uint64_t{r.port.frames_lost});
+  f("pil_crc_errors", std::uint64_t{r.crc_errors});
+  f("pil_wire_faults", std::uint64_t{p.wire_faults});
+}
+
+const std::vector<std::string_view>& pil_columns() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> n;
+    for_each_pil_column(PilRow{}, [&](std::string_view name, std::uint64_t) { n.push_back(name); });
+    return n;
+  }();
+  return names;
+}
 
 std::uint32_t low32(std::uint64_t v) noexcept { return static_cast<std::uint32_t>(v & 0xFFFFFFFFu); }
 
@@ -140,15 +176,10 @@ class PilFlightComputer final : public FlightComputer<T> {
   [[nodiscard]] const GyroTelemetry<T>& telemetry() const override { return telemetry_; }
   [[nodiscard]] GyroMode mode() const override { return telemetry_.mode; }
 
-  [[nodiscard]] std::span<const std::string_view> extra_columns() const override { return kPilColumns; }
+  [[nodiscard]] std::span<const std::string_view> extra_columns() const override { return pil_columns(); }
   void write_extras(CsvWriter& csv) const override {
-    const pil::TickOut& r = summary_.last_report;
-    csv.integer(ran_ ? 1u : 0u);
-    csv.integer(ran_ ? step_clocks_ : 0u);
-    csv.integer(ran_ ? static_cast<std::uint64_t>(std::llround(static_cast<double>(step_clocks_) * summary_.instructions_per_clock())) : 0u);
-    csv.integer(r.overruns).integer(r.skipped).integer(r.port.readings).integer(r.port.timeouts);
-    csv.integer(r.port.bus_errors).integer(r.port.duplicates).integer(r.port.frames_lost).integer(r.crc_errors);
-    csv.integer(faults_);
+    const PilRow row{ran_, step_clocks_, summary_.instructions_per_clock(), summary_.last_report, faults_};
+    for_each_pil_column(row, [&csv](std::string_view, std::uint64_t v) { csv.integer(v); });
   }
 
   void finish() override {

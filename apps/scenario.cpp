@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <span>
+#include <type_traits>
 #include <sstream>
 #include <utility>
 
@@ -28,20 +29,6 @@ using json = nlohmann::json;
 
 // Longest run accepted: a sanity bound (the CSV has one row per tick).
 constexpr std::uint64_t kMaxTicks = 100'000'000;
-
-struct FaultName {
-  FaultKind kind;
-  const char* name;
-};
-constexpr std::array<FaultName, 7> kFaultNames = {{
-    {FaultKind::kStuckPickoff, "stuck_pickoff"},
-    {FaultKind::kInvalidReading, "invalid_reading"},
-    {FaultKind::kDropout, "dropout"},
-    {FaultKind::kBiasJump, "bias_jump"},
-    {FaultKind::kDeadTorquer, "dead_torquer"},
-    {FaultKind::kSaturatedTorquer, "saturated_torquer"},
-    {FaultKind::kSpinMotorFailure, "spin_motor_failure"},
-}};
 
 // A key that is a plain name joins with a dot; any other (empty, or with dots, brackets,
 // spaces, quotes, control characters, non-ASCII) as a JSON string in brackets, so that a path
@@ -315,18 +302,92 @@ RunSpec parse_run(const Reader& r) {
   return run;
 }
 
-void parse_axis_errors(const Reader& r, AxisErrorSources<double>& e) {
-  e.static_drift_rad_s = r.number("static_drift_rad_s", 0);
-  e.in_plane_erection_1_s = r.number("in_plane_erection_1_s", 0);
-  e.cross_plane_erection_1_s = r.number("cross_plane_erection_1_s", 0);
-  e.g_sensitive_drift_rad_s = r.number("g_sensitive_drift_rad_s", 0);
-  e.torquer_cross_coupling = r.number("torquer_cross_coupling", 0);
-  e.coulomb_friction_rad_s = r.number("coulomb_friction_rad_s", 0);
+bool same_section(const char* a, const char* b) {
+  return a == b || (a != nullptr && b != nullptr && std::string_view(a) == b);
 }
 
-constexpr std::array<std::string_view, 6> kAxisErrorKeys = {
-    "static_drift_rad_s",      "in_plane_erection_1_s",  "cross_plane_erection_1_s",
-    "g_sensitive_drift_rad_s", "torquer_cross_coupling", "coulomb_friction_rad_s"};
+// A field's key in its object: the last part of its name ("pickoff.lsb_rad" -> "lsb_rad").
+std::string_view field_key(const Field& f) {
+  const std::string_view n = f.name;
+  const std::size_t dot = n.rfind('.');
+  return dot == std::string_view::npos ? n : n.substr(dot + 1);
+}
+
+// The keys a scenario may give for the fields of `c` in `section` (nullptr: those directly in
+// the struct's own object), from the struct's field table.
+template <class Config>
+std::vector<std::string_view> field_keys(const Config& c, const char* section) {
+  std::vector<std::string_view> keys;
+  visit_fields(
+      [&](const Field& f, const auto&) {
+        if (f.presence != Presence::kImplied && same_section(f.section, section)) keys.push_back(field_key(f));
+      },
+      c);
+  return keys;
+}
+
+// An enumerator by the name enum_names(E) gives it ("motor", "free").
+template <class E>
+E read_enum(const Reader& r, std::string_view key) {
+  constexpr auto names = enum_names(E{});
+  const std::string text = r.text(key, "");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (text == names[i]) return static_cast<E>(i);
+  }
+  std::string expected;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) expected += i + 1 == names.size() ? " or " : ", ";
+    expected += '"' + std::string(names[i]) + '"';
+  }
+  r.fail(key, "expected " + expected + ", got \"" + text + "\"");
+}
+
+template <class E, class = void>
+inline constexpr bool kHasEnumNames = false;
+template <class E>
+inline constexpr bool kHasEnumNames<E, std::void_t<decltype(enum_names(E{}))>> = true;
+
+// Reads the fields of `c` in `section` as its field table names them: a required one must be
+// there, an optional one left out keeps the value `c` has.
+template <class Config>
+void read_fields(const Reader& r, Config& c, const char* section) {
+  visit_fields(
+      [&](const Field& f, auto& value) {
+        if (f.presence == Presence::kImplied || !same_section(f.section, section)) return;
+        const std::string_view key = field_key(f);
+        if (f.presence == Presence::kOptional && !r.has(key)) return;
+        using M = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<M, double>) {
+          value = r.number(key);
+        } else if constexpr (std::is_same_v<M, bool>) {
+          value = r.boolean(key);
+        } else if constexpr (std::is_same_v<M, std::uint32_t>) {
+          value = r.count32(key);
+        } else if constexpr (std::is_same_v<M, std::uint64_t>) {
+          value = r.count(key);
+        } else if constexpr (kHasEnumNames<M>) {
+          (void)r.required(key);
+          value = read_enum<M>(r, key);
+        } else if constexpr (kHasFieldTable<M>) {
+          read_fields(r.object(key, field_keys(value, nullptr)), value, nullptr);
+        } else if constexpr (std::is_base_of_v<Eigen::EigenBase<M>, M>) {
+          const auto a = r.numbers<static_cast<std::size_t>(M::RowsAtCompileTime)>(key);
+          for (std::size_t i = 0; i < a.size(); ++i) value(static_cast<Eigen::Index>(i)) = a[i];
+        } else {  // only implied fields are of other types (the faults, the plant's kind)
+          r.fail(key, "no reader for this field's type");
+        }
+      },
+      c);
+}
+
+// The names of the fault kinds a scenario can schedule, in enum order.
+std::string fault_kind_list() {
+  std::string names;
+  for (int k = 1; k < kFaultKindCount; ++k) {
+    names += (names.empty() ? "" : ", ") + std::string(fault_kind_name(static_cast<FaultKind>(k)));
+  }
+  return names;
+}
 
 void parse_faults(const Reader& g, const RunSpec& run, Scenario& s) {
   if (!g.has("faults")) return;
@@ -342,9 +403,7 @@ void parse_faults(const Reader& g, const RunSpec& run, Scenario& s) {
     if (!kind.is_string()) f.fail("kind", std::string("expected a string, got ") + kind.type_name());
     const std::optional<FaultKind> k = parse_fault_kind(kind.get<std::string>());
     if (!k) {
-      std::string names;
-      for (const FaultName& n : kFaultNames) names += (names.empty() ? "" : ", ") + std::string(n.name);
-      f.fail("kind", "unknown fault kind \"" + kind.get<std::string>() + "\" (one of: " + names + ")");
+      f.fail("kind", "unknown fault kind \"" + kind.get<std::string>() + "\" (one of: " + fault_kind_list() + ")");
     }
     ev.kind = *k;
     const double start = f.number("start_s");
@@ -363,13 +422,6 @@ void parse_faults(const Reader& g, const RunSpec& run, Scenario& s) {
   s.fault_count = list.size();
 }
 
-constexpr std::array<std::string_view, 19> kGimbalKeys = {
-    "rotor_transverse_inertia", "inner_gimbal_inertia", "outer_gimbal_inertia", "inner_friction",
-    "outer_friction", "inner_coulomb_torque", "outer_coulomb_torque", "coulomb_rate_scale_rad_s",
-    "spin_drive", "motor_torque_limit", "spin_servo_bandwidth_rad_s", "spin_down_time_s",
-    "mass_unbalance", "stop_restitution", "torque_axes", "max_body_rate_rad_s", "max_torque",
-    "max_specific_force", "max_substep_phase_rad"};
-
 // The gimbal plant: the rotor's spin inertia, spin and friction from gyro.rotor, its stop
 // from gyro.limits.gimbal_stop_rad, the rest from gyro.gimbal (docs/scenarios.md).
 void parse_gimbal(const Reader& r, SimulatedGyroConfig<double>& c) {
@@ -377,70 +429,27 @@ void parse_gimbal(const Reader& r, SimulatedGyroConfig<double>& c) {
   g.spin_inertia = c.gyro.spin_inertia;
   g.max_spin_hz = c.spin_hz;
   g.stop_cone_rad = c.gimbal_stop_rad;
-  g.rotor_transverse_inertia = r.number("rotor_transverse_inertia");
-  const std::array<double, 3> inner = r.numbers<3>("inner_gimbal_inertia");
-  const std::array<double, 3> outer = r.numbers<3>("outer_gimbal_inertia");
-  g.inner_gimbal_inertia = Eigen::Vector3d(inner[0], inner[1], inner[2]);
-  g.outer_gimbal_inertia = Eigen::Vector3d(outer[0], outer[1], outer[2]);
-  g.inner_friction = r.number("inner_friction", c.gyro.friction);
-  g.outer_friction = r.number("outer_friction", c.gyro.friction);
-  g.inner_coulomb_torque = r.number("inner_coulomb_torque", 0);
-  g.outer_coulomb_torque = r.number("outer_coulomb_torque", 0);
-  g.coulomb_rate_scale_rad_s = r.number("coulomb_rate_scale_rad_s", g.coulomb_rate_scale_rad_s);
-  const std::string drive = r.text("spin_drive", "motor");
-  if (drive == "motor") {
-    g.spin_drive = SpinDrive::kMotor;
-  } else if (drive == "free") {
-    g.spin_drive = SpinDrive::kFree;
-  } else {
-    r.fail("spin_drive", "expected \"motor\" or \"free\", got \"" + drive + "\"");
-  }
-  g.motor_torque_limit = r.number("motor_torque_limit", 0);
-  g.spin_servo_bandwidth_rad_s = r.number("spin_servo_bandwidth_rad_s", 0);
-  g.spin_down_time_s = r.number("spin_down_time_s", 0);
-  g.mass_unbalance = r.number("mass_unbalance", 0);
-  g.stop_restitution = r.number("stop_restitution", 0);
-  const std::string axes = r.text("torque_axes", "gimbal");
-  if (axes == "gimbal") {
-    g.torque_axes = TorqueAxes::kGimbal;
-  } else if (axes == "gyro") {
-    g.torque_axes = TorqueAxes::kGyro;
-  } else {
-    r.fail("torque_axes", "expected \"gimbal\" or \"gyro\", got \"" + axes + "\"");
-  }
-  g.max_body_rate_rad_s = r.number("max_body_rate_rad_s", 100);
-  g.max_torque = r.number("max_torque", 1e3);
-  g.max_specific_force = r.number("max_specific_force", 1e4);
-  g.max_substep_phase_rad = r.number("max_substep_phase_rad", g.max_substep_phase_rad);
+  // The scenario's defaults: the bearings' friction the rotor's, a wide envelope.
+  g.inner_friction = c.gyro.friction;
+  g.outer_friction = c.gyro.friction;
+  g.max_body_rate_rad_s = 100;
+  g.max_torque = 1e3;
+  g.max_specific_force = 1e4;
+  read_fields(r, g, nullptr);
 }
 
 void parse_gyro(const Reader& g, const RunSpec& run, Scenario& s) {
   SimulatedGyroConfig<double>& c = s.gyro;
   c.tick_s = run.tick_s;
-  {
-    const Reader r = g.object("rotor", {"pitch_inertia", "yaw_inertia", "spin_inertia", "friction", "spin_hz",
-                                        "spin_down_time_constant_s", "has_spin_readback"});
-    c.gyro.pitch_inertia = r.number("pitch_inertia");
-    c.gyro.yaw_inertia = r.number("yaw_inertia");
-    c.gyro.spin_inertia = r.number("spin_inertia");
-    c.gyro.friction = r.number("friction");
-    c.spin_hz = r.number("spin_hz");
-    c.spin_down_time_constant_s = r.number("spin_down_time_constant_s", 0);
-    c.has_spin_readback = r.boolean("has_spin_readback");
+  c.seed = 1;  // the scenario's default
+  for (const char* section : {"rotor", "limits"}) {
+    std::vector<std::string_view> keys = field_keys(c.gyro, section);
+    for (std::string_view k : field_keys(c, section)) keys.push_back(k);
+    const Reader r = g.object(section, keys);
+    read_fields(r, c.gyro, section);
+    read_fields(r, c, section);
   }
-  {
-    const Reader r = g.object("limits", {"gimbal_cone_limit_rad", "pitch_gimbal_limit_rad", "yaw_gimbal_limit_rad",
-                                         "gimbal_stop_rad", "max_pitch_rate_rad_s", "max_yaw_rate_rad_s",
-                                         "small_angle_limit_rad"});
-    c.gyro.gimbal_cone_limit_rad = r.number("gimbal_cone_limit_rad");
-    c.gyro.pitch_gimbal_limit_rad = r.number("pitch_gimbal_limit_rad", 0);
-    c.gyro.yaw_gimbal_limit_rad = r.number("yaw_gimbal_limit_rad", 0);
-    c.gimbal_stop_rad = r.number("gimbal_stop_rad", 0);
-    c.gyro.max_pitch_rate_rad_s = r.number("max_pitch_rate_rad_s");
-    c.gyro.max_yaw_rate_rad_s = r.number("max_yaw_rate_rad_s");
-    c.gyro.small_angle_limit_rad = r.number("small_angle_limit_rad", 0.01);
-  }
-  c.gyro.gravity = g.number("gravity");
+  read_fields(g, c.gyro, nullptr);  // gravity, errors
   const std::string plant = g.text("plant", "gimbal");
   if (plant == "gimbal") {
     c.plant = PlantKind::kGimbal;
@@ -448,7 +457,7 @@ void parse_gyro(const Reader& g, const RunSpec& run, Scenario& s) {
       g.fail("gimbal", "missing required field for plant \"gimbal\" (the default): the device's inertias and "
                        "bearings; or set gyro.plant to \"report\" for the report's linear model");
     }
-    parse_gimbal(g.object("gimbal", kGimbalKeys), c);
+    parse_gimbal(g.object("gimbal", field_keys(c.gimbal, nullptr)), c);
     if (g.has("errors")) {
       g.fail("errors", "the report's error sources belong to plant \"report\"; the gimbal plant has its own "
                        "(gimbal.mass_unbalance, gimbal.inner_coulomb_torque, ...)");
@@ -463,61 +472,13 @@ void parse_gyro(const Reader& g, const RunSpec& run, Scenario& s) {
   } else {
     g.fail("plant", "expected \"gimbal\" or \"report\", got \"" + plant + "\"");
   }
-  if (g.has("errors")) {
-    const Reader e = g.object("errors", {"pitch", "yaw"});
-    if (e.has("pitch")) parse_axis_errors(e.object("pitch", kAxisErrorKeys), c.gyro.errors.pitch);
-    if (e.has("yaw")) parse_axis_errors(e.object("yaw", kAxisErrorKeys), c.gyro.errors.yaw);
-  }
-  if (g.has("pickoff")) {
-    const Reader r = g.object("pickoff", {"lsb_rad", "bias_rad", "lag_s", "noise_rad", "range_rad"});
-    c.pickoff.lsb_rad = r.number("lsb_rad", 0);
-    const std::array<double, 2> bias = r.numbers<2>("bias_rad", {0, 0});
-    c.pickoff.bias_rad = Eigen::Vector2d(bias[0], bias[1]);
-    c.pickoff.lag_s = r.number("lag_s", 0);
-    c.pickoff.noise_rad = r.number("noise_rad", 0);
-    c.pickoff.range_rad = r.number("range_rad", 0);
-  }
-  if (g.has("torquer")) {
-    const Reader r = g.object("torquer", {"scale_factor", "max_torque"});
-    const std::array<double, 2> sf = r.numbers<2>("scale_factor", {1, 1});
-    c.torquer.scale_factor = Eigen::Vector2d(sf[0], sf[1]);
-    c.torquer.max_torque = r.number("max_torque", 0);
-  }
-  c.seed = g.has("seed") ? g.count("seed") : 1u;
+  read_fields(g, c, nullptr);  // pickoff, torquer, seed
   parse_faults(g, run, s);
 }
 
 void parse_component(const Reader& r, const RunSpec& run, GyroComponentConfig<double>& c) {
   c.tick_s = run.tick_s;
-  c.pitch_inertia = r.number("pitch_inertia");
-  c.yaw_inertia = r.number("yaw_inertia");
-  c.spin_inertia = r.number("spin_inertia");
-  c.friction = r.number("friction");
-  c.nominal_spin_hz = r.number("nominal_spin_hz");
-  c.min_spin_hz = r.number("min_spin_hz");
-  c.use_spin_readback = r.boolean("use_spin_readback", true);
-  c.max_pitch_rate_rad_s = r.number("max_pitch_rate_rad_s");
-  c.max_yaw_rate_rad_s = r.number("max_yaw_rate_rad_s");
-  c.max_torque = r.number("max_torque");
-  c.friction_compensation = r.boolean("friction_compensation", true);
-  c.cage_gain_1_s = r.number("cage_gain_1_s");
-  c.gimbal_cone_limit_rad = r.number("gimbal_cone_limit_rad");
-  c.gimbal_stop_margin_rad = r.number("gimbal_stop_margin_rad");
-  c.small_angle_limit_rad = r.number("small_angle_limit_rad", 0.01);
-  c.pickoff_range_rad = r.number("pickoff_range_rad");
-  c.max_pickoff_step_rad = r.number("max_pickoff_step_rad");
-  c.estimator_gain = r.number("estimator_gain");
-  c.residual_limit_rad = r.number("residual_limit_rad");
-  c.residual_persistence_ticks = r.count32("residual_persistence_ticks");
-  c.invalid_persistence_ticks = r.count32("invalid_persistence_ticks");
-  c.spin_low_persistence_ticks = r.count32("spin_low_persistence_ticks");
-  c.torquer_fail_persistence_ticks = r.count32("torquer_fail_persistence_ticks");
-  c.uncage_settle_ticks = r.count32("uncage_settle_ticks");
-  const GyroComponentConfig<double> defaults;
-  c.max_tick_gap = r.has("max_tick_gap") ? r.count32("max_tick_gap") : defaults.max_tick_gap;
-  c.input_persistence_ticks =
-      r.has("input_persistence_ticks") ? r.count32("input_persistence_ticks") : defaults.input_persistence_ticks;
-  c.max_body_rate_rad_s = r.number("max_body_rate_rad_s", defaults.max_body_rate_rad_s);
+  read_fields(r, c, nullptr);
 }
 
 BodyProfile parse_body(const Reader& r, Scenario& s) {
@@ -578,16 +539,7 @@ std::vector<GuidanceEvent> parse_guidance(const Reader& r, const RunSpec& run, c
                         Reader::format(out.back().t_s) + " s)");
     }
     ev.tick = ticks_at(e, "t_s", ev.t_s, run.tick_s);
-    const std::string req = e.text("request", "none");
-    if (req == "none") {
-      ev.request = ModeRequest::kNone;
-    } else if (req == "cage") {
-      ev.request = ModeRequest::kCage;
-    } else if (req == "uncage") {
-      ev.request = ModeRequest::kUncage;
-    } else {
-      e.fail("request", "expected \"none\", \"cage\" or \"uncage\", got \"" + req + "\"");
-    }
+    if (e.has("request")) ev.request = read_enum<ModeRequest>(e, "request");
     if (e.has("slew_rate_rad_s")) {
       const std::array<double, 2> w = e.numbers<2>("slew_rate_rad_s");
       ev.slew_rate_rad_s = Eigen::Vector2d(w[0], w[1]);
@@ -680,19 +632,16 @@ std::optional<Precision> parse_precision(std::string_view name) noexcept {
 }
 
 std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept {
-  for (const FaultName& n : kFaultNames) {
-    if (name == n.name) return n.kind;
+  for (int k = 1; k < kFaultKindCount; ++k) {
+    if (name == fault_kind_name(static_cast<FaultKind>(k))) return static_cast<FaultKind>(k);
   }
   return std::nullopt;
 }
 
 const char* request_name(ModeRequest r) noexcept {
-  switch (r) {
-    case ModeRequest::kNone: return "none";
-    case ModeRequest::kCage: return "cage";
-    case ModeRequest::kUncage: return "uncage";
-  }
-  return "unknown";
+  constexpr auto names = enum_names(ModeRequest{});
+  const auto i = static_cast<std::size_t>(r);
+  return i < names.size() ? names[i] : "unknown";
 }
 
 Scenario parse_scenario(std::string_view json_text, const std::string& file) {
@@ -719,17 +668,7 @@ Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& f
   parse_gyro(top.object("gyro", {"plant", "rotor", "limits", "gravity", "errors", "gimbal", "pickoff", "torquer",
                                  "seed", "faults"}),
              s.run, s);
-  parse_component(top.object("component",
-                             {"pitch_inertia", "yaw_inertia", "spin_inertia", "friction", "nominal_spin_hz",
-                              "min_spin_hz", "use_spin_readback", "max_pitch_rate_rad_s", "max_yaw_rate_rad_s",
-                              "max_torque", "friction_compensation", "cage_gain_1_s", "gimbal_cone_limit_rad",
-                              "gimbal_stop_margin_rad", "small_angle_limit_rad", "pickoff_range_rad",
-                              "max_pickoff_step_rad", "estimator_gain", "residual_limit_rad",
-                              "residual_persistence_ticks", "invalid_persistence_ticks",
-                              "spin_low_persistence_ticks", "torquer_fail_persistence_ticks",
-                              "uncage_settle_ticks", "max_tick_gap", "input_persistence_ticks",
-                              "max_body_rate_rad_s"}),
-                  s.run, s.component);
+  parse_component(top.object("component", field_keys(s.component, nullptr)), s.run, s.component);
   s.body = parse_body(
       top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force"}), s);
   s.guidance = parse_guidance(top.object("guidance", {"schedule"}), s.run, s.file);
@@ -795,32 +734,26 @@ std::string component_field_path(const Scenario& s, std::string_view field) {
 }
 
 std::string gyro_field_path(const Scenario& s, std::string_view field) {
-  struct Section {
-    std::string_view field;
-    std::string_view section;
-  };
-  static constexpr std::array<Section, 13> kSections = {{
-      {"pitch_inertia", "rotor"},          {"yaw_inertia", "rotor"},
-      {"spin_inertia", "rotor"},           {"friction", "rotor"},
-      {"spin_hz", "rotor"},                {"spin_down_time_constant_s", "rotor"},
-      {"gimbal_cone_limit_rad", "limits"}, {"pitch_gimbal_limit_rad", "limits"},
-      {"yaw_gimbal_limit_rad", "limits"},  {"gimbal_stop_rad", "limits"},
-      {"max_pitch_rate_rad_s", "limits"},  {"max_yaw_rate_rad_s", "limits"},
-      {"small_angle_limit_rad", "limits"},
-  }};
   if (field == "tick_s") return s.run.tick_field;
   if (s.gyro.plant == PlantKind::kGimbal) {
     // The gimbal plant's fields: three come from rotor and limits, the rest from gimbal.
     if (field == "spin_inertia") return "gyro.rotor.spin_inertia";
     if (field == "max_spin_hz") return "gyro.rotor.spin_hz";
     if (field == "stop_cone_rad") return "gyro.limits.gimbal_stop_rad";
-    for (std::string_view k : kGimbalKeys) {
+    for (std::string_view k : field_keys(s.gyro.gimbal, nullptr)) {
       if (k == field) return join("gyro.gimbal", field);
     }
   }
-  for (const Section& sec : kSections) {
-    if (sec.field == field) return join(join("gyro", sec.section), field);
-  }
+  // The fields a scenario gives in gyro.rotor and gyro.limits.
+  std::string in_section;
+  const auto find = [&](const Field& f, const auto&) {
+    if (in_section.empty() && f.section != nullptr && field_key(f) == field) {
+      in_section = join(join("gyro", f.section), field);
+    }
+  };
+  visit_fields(find, s.gyro.gyro);
+  visit_fields(find, s.gyro);
+  if (!in_section.empty()) return in_section;
   std::string f(field);  // a path below gyro ("pickoff.lsb_rad", "faults[1].axis"): appended as is
   const std::string ticks = ".duration_ticks";
   if (f.rfind("faults[", 0) == 0 && f.size() > ticks.size() &&

@@ -114,130 +114,12 @@ std::uint64_t nonfinite_count(const TickRecord& r) {
   return n;
 }
 
-template <typename T>
-Vector2<T> v2(const Eigen::Vector2d& v) {
-  return Vector2<T>(static_cast<T>(v(0)), static_cast<T>(v(1)));
-}
-
-template <typename T>
-GyroModelConfig<T> cast_config(const GyroModelConfig<double>& d) {
-  const auto c = [](double v) { return static_cast<T>(v); };
-  const auto axis = [&](const AxisErrorSources<double>& e) {
-    AxisErrorSources<T> a;
-    a.static_drift_rad_s = c(e.static_drift_rad_s);
-    a.in_plane_erection_1_s = c(e.in_plane_erection_1_s);
-    a.cross_plane_erection_1_s = c(e.cross_plane_erection_1_s);
-    a.g_sensitive_drift_rad_s = c(e.g_sensitive_drift_rad_s);
-    a.torquer_cross_coupling = c(e.torquer_cross_coupling);
-    a.coulomb_friction_rad_s = c(e.coulomb_friction_rad_s);
-    return a;
-  };
-  GyroModelConfig<T> m;
-  m.pitch_inertia = c(d.pitch_inertia);
-  m.yaw_inertia = c(d.yaw_inertia);
-  m.spin_inertia = c(d.spin_inertia);
-  m.friction = c(d.friction);
-  m.gimbal_cone_limit_rad = c(d.gimbal_cone_limit_rad);
-  m.pitch_gimbal_limit_rad = c(d.pitch_gimbal_limit_rad);
-  m.yaw_gimbal_limit_rad = c(d.yaw_gimbal_limit_rad);
-  m.max_pitch_rate_rad_s = c(d.max_pitch_rate_rad_s);
-  m.max_yaw_rate_rad_s = c(d.max_yaw_rate_rad_s);
-  m.small_angle_limit_rad = c(d.small_angle_limit_rad);
-  m.gravity = c(d.gravity);
-  m.errors.pitch = axis(d.errors.pitch);
-  m.errors.yaw = axis(d.errors.yaw);
-  return m;
-}
-
-template <typename T>
-GimbalPlantConfig<T> cast_config(const GimbalPlantConfig<double>& d) {
-  const auto c = [](double v) { return static_cast<T>(v); };
-  GimbalPlantConfig<T> g;
-  g.spin_inertia = c(d.spin_inertia);
-  g.rotor_transverse_inertia = c(d.rotor_transverse_inertia);
-  g.inner_gimbal_inertia = d.inner_gimbal_inertia.cast<T>();
-  g.outer_gimbal_inertia = d.outer_gimbal_inertia.cast<T>();
-  g.inner_friction = c(d.inner_friction);
-  g.outer_friction = c(d.outer_friction);
-  g.inner_coulomb_torque = c(d.inner_coulomb_torque);
-  g.outer_coulomb_torque = c(d.outer_coulomb_torque);
-  g.coulomb_rate_scale_rad_s = c(d.coulomb_rate_scale_rad_s);
-  g.spin_drive = d.spin_drive;
-  g.max_spin_hz = c(d.max_spin_hz);
-  g.motor_torque_limit = c(d.motor_torque_limit);
-  g.spin_servo_bandwidth_rad_s = c(d.spin_servo_bandwidth_rad_s);
-  g.spin_down_time_s = c(d.spin_down_time_s);
-  g.mass_unbalance = c(d.mass_unbalance);
-  g.stop_cone_rad = c(d.stop_cone_rad);
-  g.stop_restitution = c(d.stop_restitution);
-  g.torque_axes = d.torque_axes;
-  g.max_body_rate_rad_s = c(d.max_body_rate_rad_s);
-  g.max_torque = c(d.max_torque);
-  g.max_specific_force = c(d.max_specific_force);
-  g.max_substep_phase_rad = c(d.max_substep_phase_rad);
-  return g;
-}
-
-template <typename T>
-SimulatedGyroConfig<T> cast_config(const SimulatedGyroConfig<double>& d) {
-  const auto c = [](double v) { return static_cast<T>(v); };
-  SimulatedGyroConfig<T> s;
-  s.plant = d.plant;
-  s.gimbal = cast_config<T>(d.gimbal);
-  s.gyro = cast_config<T>(d.gyro);
-  s.tick_s = c(d.tick_s);
-  s.spin_hz = c(d.spin_hz);
-  s.spin_down_time_constant_s = c(d.spin_down_time_constant_s);
-  s.has_spin_readback = d.has_spin_readback;
-  s.pickoff.lsb_rad = c(d.pickoff.lsb_rad);
-  s.pickoff.bias_rad = v2<T>(d.pickoff.bias_rad);
-  s.pickoff.lag_s = c(d.pickoff.lag_s);
-  s.pickoff.noise_rad = c(d.pickoff.noise_rad);
-  s.pickoff.range_rad = c(d.pickoff.range_rad);
-  s.torquer.scale_factor = v2<T>(d.torquer.scale_factor);
-  s.torquer.max_torque = c(d.torquer.max_torque);
-  s.gimbal_stop_rad = c(d.gimbal_stop_rad);
-  s.seed = d.seed;
-  for (std::size_t i = 0; i < s.faults.size(); ++i) {
-    const FaultEvent<double>& f = d.faults[i];
-    s.faults[i] = FaultEvent<T>{f.kind, f.start_tick, f.duration_ticks, f.axis, c(f.magnitude)};
-  }
-  return s;
-}
-
-template <typename T>
-GyroComponentConfig<T> cast_config(const GyroComponentConfig<double>& d) {
-  const auto c = [](double v) { return static_cast<T>(v); };
-  GyroComponentConfig<T> g;
-  g.tick_s = c(d.tick_s);
-  g.pitch_inertia = c(d.pitch_inertia);
-  g.yaw_inertia = c(d.yaw_inertia);
-  g.spin_inertia = c(d.spin_inertia);
-  g.friction = c(d.friction);
-  g.nominal_spin_hz = c(d.nominal_spin_hz);
-  g.min_spin_hz = c(d.min_spin_hz);
-  g.use_spin_readback = d.use_spin_readback;
-  g.max_pitch_rate_rad_s = c(d.max_pitch_rate_rad_s);
-  g.max_yaw_rate_rad_s = c(d.max_yaw_rate_rad_s);
-  g.max_torque = c(d.max_torque);
-  g.friction_compensation = d.friction_compensation;
-  g.cage_gain_1_s = c(d.cage_gain_1_s);
-  g.gimbal_cone_limit_rad = c(d.gimbal_cone_limit_rad);
-  g.gimbal_stop_margin_rad = c(d.gimbal_stop_margin_rad);
-  g.small_angle_limit_rad = c(d.small_angle_limit_rad);
-  g.pickoff_range_rad = c(d.pickoff_range_rad);
-  g.max_pickoff_step_rad = c(d.max_pickoff_step_rad);
-  g.estimator_gain = c(d.estimator_gain);
-  g.residual_limit_rad = c(d.residual_limit_rad);
-  g.residual_persistence_ticks = d.residual_persistence_ticks;
-  g.invalid_persistence_ticks = d.invalid_persistence_ticks;
-  g.spin_low_persistence_ticks = d.spin_low_persistence_ticks;
-  g.torquer_fail_persistence_ticks = d.torquer_fail_persistence_ticks;
-  g.uncage_settle_ticks = d.uncage_settle_ticks;
-  g.max_tick_gap = d.max_tick_gap;
-  g.input_persistence_ticks = d.input_persistence_ticks;
-  g.max_body_rate_rad_s = c(d.max_body_rate_rad_s);
-  return g;
+// A configuration read in double, in the run's scalar type (field by field, through its table).
+template <typename T, template <class> class Config>
+Config<T> cast_config(const Config<double>& d) {
+  Config<T> out;
+  cast_fields(d, out);
+  return out;
 }
 
 std::string refusal(const Scenario& s, const std::string& path, const char* who, Status st) {
@@ -367,7 +249,7 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     if (k > 0) body.advance();
     GuidanceCommand<T> command;
     command.request = guidance.at(k);
-    command.slew_rate_cmd_rad_s = v2<T>(guidance.slew());
+    command.slew_rate_cmd_rad_s = guidance.slew().template cast<T>();
     command.nav_valid = guidance.nav_valid();
     const SilStatus<std::optional<Status>> ran = loop.tick(k, sample(), command);
     if (ran.stub != Status::kOk) {

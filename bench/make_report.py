@@ -17,6 +17,8 @@ import statistics
 import subprocess
 import sys
 
+import tick_cost_report
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 EXACT = ["exact_precomputed_1k", "exact_propagate_1k", "exact_precomputed_100", "exact_propagate_100"]
@@ -688,6 +690,7 @@ def main():
         "WORST_REF": fmt_err(worst_ref),
         "DOPRI_FIRST_STEP": "1e-4 s",
     }
+    subst.update(tick_cost_report.sections(os.path.join(rdir, "tick-cost")))
     with open(os.path.join(HERE, "performance.md.in")) as f:
         text = f.read()
     for k, v in subst.items():

@@ -3,7 +3,8 @@
 //
 // Input: byte 0 (bit 0 float; bit 1 overrides configuration fields; bit 2 steps before
 // activation; bit 3 friction_compensation off; bit 4 use_spin_readback off); with bit 1 a
-// 32-bit field mask and the overriding values; then one operation word (16 bits) per tick.
+// 32-bit field mask (bit i: the i-th number or count of the configuration's field table) and
+// the overriding values; then one operation word (16 bits) per tick.
 // Each bit of the word changes one thing for that tick (see Script::next): the pickoff angles,
 // the sequence counter, the valid bits and spin readback, a port failure on read or on write,
 // the mode request (invalid enum values included), the slew command, the navigation (valid
@@ -33,6 +34,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "fuzz_support.hpp"
 #include "gyro/gyro_component.hpp"
@@ -112,36 +114,30 @@ gyro::GyroComponentConfig<T> nominal_config() {
 }
 
 // Overrides the fields selected by a 32-bit mask (values of the order of the nominal ones,
-// or anything at all).
+// or anything at all): bit i is the i-th number or count of the configuration's field table
+// (gyro/config_fields.hpp), in table order; the flags have header bits of their own.
 template <typename T>
 void override_fields(Bytes& in, gyro::GyroComponentConfig<T>& c) {
-  using Cfg = gyro::GyroComponentConfig<T>;
-  static constexpr T Cfg::*kReal[] = {
-      &Cfg::tick_s,           &Cfg::pitch_inertia,         &Cfg::yaw_inertia,        &Cfg::spin_inertia,
-      &Cfg::friction,         &Cfg::nominal_spin_hz,       &Cfg::min_spin_hz,        &Cfg::max_pitch_rate_rad_s,
-      &Cfg::max_yaw_rate_rad_s, &Cfg::max_torque,          &Cfg::cage_gain_1_s,      &Cfg::gimbal_cone_limit_rad,
-      &Cfg::gimbal_stop_margin_rad, &Cfg::small_angle_limit_rad, &Cfg::pickoff_range_rad,
-      &Cfg::max_pickoff_step_rad, &Cfg::estimator_gain,    &Cfg::residual_limit_rad,
-  };
-  static constexpr std::uint32_t Cfg::*kCount[] = {
-      &Cfg::residual_persistence_ticks, &Cfg::invalid_persistence_ticks, &Cfg::spin_low_persistence_ticks,
-      &Cfg::torquer_fail_persistence_ticks, &Cfg::uncage_settle_ticks,
-  };
-  constexpr unsigned kReals = sizeof(kReal) / sizeof(kReal[0]);
   const std::uint32_t mask = in.u32();
-  for (unsigned i = 0; i < kReals; ++i) {
-    if (mask & (1u << i)) {
-      T& field = c.*kReal[i];
-      const T scale = field == T(0) ? T(1) : field;
-      field = in.value<T>(T(2) * scale);
-    }
-  }
-  for (unsigned i = 0; i < sizeof(kCount) / sizeof(kCount[0]); ++i) {
-    if (mask & (1u << (kReals + i))) {
-      const std::uint8_t b = in.u8();
-      c.*kCount[i] = (b & 0x80u) ? in.u32() : b;
-    }
-  }
+  unsigned bit = 0;
+  gyro::visit_fields(
+      [&](const gyro::Field&, auto& field) {
+        using M = std::decay_t<decltype(field)>;
+        if constexpr (std::is_same_v<M, T>) {
+          if (bit < 32u && (mask & (1u << bit))) {
+            const T scale = field == T(0) ? T(1) : field;
+            field = in.value<T>(T(2) * scale);
+          }
+          ++bit;
+        } else if constexpr (std::is_same_v<M, std::uint32_t>) {
+          if (bit < 32u && (mask & (1u << bit))) {
+            const std::uint8_t b = in.u8();
+            field = (b & 0x80u) ? in.u32() : b;
+          }
+          ++bit;
+        }
+      },
+      c);
 }
 
 template <typename T>

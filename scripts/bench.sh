@@ -2,12 +2,15 @@
 # Benchmarks of the exact rotor propagator against the integrators a user would pick instead.
 # One command: builds (Release = -O2, x86-64 baseline), finds each contender's steps for the
 # accuracy target, counts instructions with callgrind (also of the SIL stub's gimbal plant), times
-# with Google Benchmark, and writes docs/performance.md with docs/img/*.png.
+# with Google Benchmark, counts the flight component's tick on x86-64, over every scenario and on
+# the Cortex-M4F/M7 under QEMU (scripts/tick-cost.sh), and writes docs/performance.md with
+# docs/img/*.png.
 #
 #   scripts/bench.sh [BUILD_DIR]        (default build-bench; raw results in BUILD_DIR/bench-results)
 #
 # Needs: cmake, g++, Eigen, Google Benchmark (libbenchmark-dev), Boost headers (libboost-dev),
-# valgrind, gnuplot (gnuplot-nox), python3, objdump. About 7 minutes on two cores.
+# valgrind, gnuplot (gnuplot-nox), python3, objdump, and for scripts/tick-cost.sh nlohmann-json,
+# CLI11, gcc-arm-none-eabi (with newlib), qemu-system-arm. About 12 minutes on two cores.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -25,8 +28,9 @@ for tool in cmake valgrind gnuplot python3 objdump; do
 done
 
 say "configure and build ($build)"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGYRO_BUILD_BENCH=ON \
-  -DGYRO_BUILD_TESTS=OFF -DGYRO_BUILD_TOOLS=OFF >/dev/null
+# -O2 everywhere and the tools on: the configuration scripts/tick-cost.sh uses (gyro_sil).
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
+  -DGYRO_BUILD_BENCH=ON -DGYRO_BUILD_TESTS=OFF -DGYRO_BUILD_TOOLS=ON >/dev/null
 cmake --build "$build" -j2 --target gyro_bench_calibrate gyro_bench_driver gyro_bench_wall \
   gyro_bench_latency >/dev/null
 
@@ -127,6 +131,9 @@ for run in "seeker double" "seeker float" "seeker_coarse double" "report double"
     echo "$1,$2,$n,$ir,$shape" >> "$results/gimbal.csv"
   done
 done
+
+say "the flight component's tick: x86-64, every scenario, Cortex-M4F/M7 (scripts/tick-cost.sh)"
+"$root/scripts/tick-cost.sh" "$build" "$results/tick-cost" > "$results/tick-cost.txt"
 
 say "wall time (Google Benchmark, median of $reps repetitions)"
 "$bin/gyro_bench_wall" --calibration="$results/calibration.csv" \

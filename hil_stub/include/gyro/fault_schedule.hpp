@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "gyro/config_fields.hpp"
 #include "gyro/gyro_model.hpp"  // ConfigCheck, Status, Vector2
 
 namespace gyro {
@@ -37,33 +38,20 @@ enum class FaultKind : std::uint8_t {
 };
 inline constexpr int kFaultKindCount = 8;
 
+// The fault kinds' names in scenario files and logs, in enum order.
+inline constexpr std::array<const char*, static_cast<std::size_t>(kFaultKindCount)> kFaultKindNames = {
+    "none",         "stuck_pickoff",     "invalid_reading",    "dropout",
+    "bias_jump",    "dead_torquer",      "saturated_torquer",  "spin_motor_failure"};
+
 [[nodiscard]] constexpr const char* to_string(FaultKind k) noexcept {
-  switch (k) {
-    case FaultKind::kNone: return "none";
-    case FaultKind::kStuckPickoff: return "stuck pickoff";
-    case FaultKind::kInvalidReading: return "invalid reading";
-    case FaultKind::kDropout: return "dropout";
-    case FaultKind::kBiasJump: return "bias jump";
-    case FaultKind::kDeadTorquer: return "dead torquer";
-    case FaultKind::kSaturatedTorquer: return "saturated torquer";
-    case FaultKind::kSpinMotorFailure: return "spin motor failure";
-  }
-  return "unknown fault";
+  const auto i = static_cast<std::size_t>(k);
+  return i < kFaultKindNames.size() ? kFaultKindNames[i] : "unknown fault";
 }
 
 // The fault kind's name in scenario files and logs ("stuck_pickoff"); "" for kNone or an
 // unknown value.
 [[nodiscard]] constexpr const char* fault_kind_name(FaultKind k) noexcept {
-  switch (k) {
-    case FaultKind::kStuckPickoff: return "stuck_pickoff";
-    case FaultKind::kInvalidReading: return "invalid_reading";
-    case FaultKind::kDropout: return "dropout";
-    case FaultKind::kBiasJump: return "bias_jump";
-    case FaultKind::kDeadTorquer: return "dead_torquer";
-    case FaultKind::kSaturatedTorquer: return "saturated_torquer";
-    case FaultKind::kSpinMotorFailure: return "spin_motor_failure";
-    default: return "";
-  }
+  return k == FaultKind::kNone ? "" : (static_cast<std::size_t>(k) < kFaultKindNames.size() ? to_string(k) : "");
 }
 
 // The bit of a fault kind in active-fault words.
@@ -78,6 +66,22 @@ struct FaultEvent {
   std::uint64_t duration_ticks{};  // 0 = permanent
   int axis{-1};                    // 0 pitch, 1 yaw, -1 both
   T magnitude{};  // bias jump (rad); saturated torquer level (torque); spin failure time constant (s)
+};
+
+// The fields (gyro/config_fields.hpp); check(FaultList) checks them per slot. A scenario
+// gives a fault in its own terms (start_s, duration_s).
+template <typename T>
+struct FieldTable<FaultEvent<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Presence kImplied = Presence::kImplied;
+    v(Field{"kind", Rule::kNone, Status::kOutOfRange, kImplied}, c.kind...);
+    v(Field{"start_tick", Rule::kNone, Status::kOutOfRange, kImplied}, c.start_tick...);
+    v(Field{"duration_ticks", Rule::kNone, Status::kOutOfRange, kImplied}, c.duration_ticks...);
+    v(Field{"axis", Rule::kNone, Status::kOutOfRange, kImplied}, c.axis...);
+    v(Field{"magnitude", Rule::kNone, Status::kOutOfRange, kImplied}, c.magnitude...);
+  }
 };
 
 inline constexpr int kMaxFaultEvents = 8;

@@ -7,9 +7,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
+#include "gyro/config_fields.hpp"
 #include "gyro/gyro_model.hpp"  // ConfigCheck (and Status, all_finite, kPi, Vector2/3); no model code
 
 namespace gyro {
@@ -19,6 +21,8 @@ enum class SpinDrive : std::uint8_t {
   kMotor = 0,  // a motor holds the commanded relative spin rate, within its torque limit
   kFree,       // no motor: the rotor runs down against its bearing drag (if any)
 };
+// The names of SpinDrive's values in configuration files, in enum order.
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(SpinDrive) noexcept { return {"motor", "free"}; }
 
 // About which axes the torquers push and the gimbal friction acts.
 enum class TorqueAxes : std::uint8_t {
@@ -27,6 +31,7 @@ enum class TorqueAxes : std::uint8_t {
   kGyro,        // the report's idealisation: T1, T2 about the gyro's own non-rolling pitch and
                 // yaw axes, friction on the gyro's inertial rates about them
 };
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(TorqueAxes) noexcept { return {"gimbal", "gyro"}; }
 
 template <typename T>
 struct GimbalPlantConfig {
@@ -74,6 +79,42 @@ struct GimbalPlantConfig {
   T max_substep_phase_rad{T(0.5)};
 };
 
+// The fields (gyro/config_fields.hpp). A scenario gives the rotor's spin inertia, its spin and
+// the stop in its "rotor" and "limits" (implied here); check() adds the cross-field rules.
+template <typename T>
+struct FieldTable<GimbalPlantConfig<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Rule kPos = Rule::kPositive, kNonNeg = Rule::kNonNegative;
+    constexpr Status kRange = Status::kOutOfRange, kInertia = Status::kNonPositiveInertia;
+    constexpr Status kFriction = Status::kNegativeFriction;
+    constexpr Presence kReq = Presence::kRequired, kOpt = Presence::kOptional, kImplied = Presence::kImplied;
+    v(Field{"spin_inertia", kPos, kInertia, kImplied}, c.spin_inertia...);
+    v(Field{"rotor_transverse_inertia", kPos, kInertia, kReq}, c.rotor_transverse_inertia...);
+    v(Field{"inner_gimbal_inertia", kNonNeg, kInertia, kReq}, c.inner_gimbal_inertia...);
+    v(Field{"outer_gimbal_inertia", kNonNeg, kInertia, kReq}, c.outer_gimbal_inertia...);
+    v(Field{"inner_friction", kNonNeg, kFriction, kOpt}, c.inner_friction...);
+    v(Field{"outer_friction", kNonNeg, kFriction, kOpt}, c.outer_friction...);
+    v(Field{"inner_coulomb_torque", kNonNeg, kFriction, kOpt}, c.inner_coulomb_torque...);
+    v(Field{"outer_coulomb_torque", kNonNeg, kFriction, kOpt}, c.outer_coulomb_torque...);
+    v(Field{"coulomb_rate_scale_rad_s", kPos, kRange, kOpt}, c.coulomb_rate_scale_rad_s...);
+    v(Field{"spin_drive", Rule::kNone, kRange, kOpt}, c.spin_drive...);
+    v(Field{"max_spin_hz", kPos, kRange, kImplied}, c.max_spin_hz...);
+    v(Field{"motor_torque_limit", Rule::kNone, kRange, kOpt}, c.motor_torque_limit...);
+    v(Field{"spin_servo_bandwidth_rad_s", kNonNeg, kRange, kOpt}, c.spin_servo_bandwidth_rad_s...);
+    v(Field{"spin_down_time_s", kNonNeg, kRange, kOpt}, c.spin_down_time_s...);
+    v(Field{"mass_unbalance", Rule::kFinite, kRange, kOpt}, c.mass_unbalance...);
+    v(Field{"stop_cone_rad", kPos, kRange, kImplied}, c.stop_cone_rad...);
+    v(Field{"stop_restitution", kNonNeg, kRange, kOpt}, c.stop_restitution...);
+    v(Field{"torque_axes", Rule::kNone, kRange, kOpt}, c.torque_axes...);
+    v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt}, c.max_body_rate_rad_s...);
+    v(Field{"max_torque", kPos, kRange, kOpt}, c.max_torque...);
+    v(Field{"max_specific_force", kPos, kRange, kOpt}, c.max_specific_force...);
+    v(Field{"max_substep_phase_rad", kPos, kRange, kOpt}, c.max_substep_phase_rad...);
+  }
+};
+
 // 80 deg: the outer axis's effective inertia falls as cos^2 of the pitch angle (gimbal lock at
 // 90 deg); a stop up to here keeps it above 3 % of its value at zero.
 template <typename T>
@@ -99,42 +140,14 @@ inline constexpr T kMaxInertiaRatio = T(1e6);
 
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GimbalPlantConfig<T>& c) noexcept {
-  struct Field {
-    T value;
-    const char* name;
-    bool zero_allowed;
-    Status if_not;
-  };
-  const Field fields[] = {
-      {c.spin_inertia, "spin_inertia", false, Status::kNonPositiveInertia},
-      {c.rotor_transverse_inertia, "rotor_transverse_inertia", false, Status::kNonPositiveInertia},
-      {c.inner_friction, "inner_friction", true, Status::kNegativeFriction},
-      {c.outer_friction, "outer_friction", true, Status::kNegativeFriction},
-      {c.inner_coulomb_torque, "inner_coulomb_torque", true, Status::kNegativeFriction},
-      {c.outer_coulomb_torque, "outer_coulomb_torque", true, Status::kNegativeFriction},
-      {c.coulomb_rate_scale_rad_s, "coulomb_rate_scale_rad_s", false, Status::kOutOfRange},
-      {c.max_spin_hz, "max_spin_hz", false, Status::kOutOfRange},
-      {c.spin_servo_bandwidth_rad_s, "spin_servo_bandwidth_rad_s", true, Status::kOutOfRange},
-      {c.spin_down_time_s, "spin_down_time_s", true, Status::kOutOfRange},
-      {c.stop_cone_rad, "stop_cone_rad", false, Status::kOutOfRange},
-      {c.stop_restitution, "stop_restitution", true, Status::kOutOfRange},
-      {c.max_body_rate_rad_s, "max_body_rate_rad_s", false, Status::kOutOfRange},
-      {c.max_torque, "max_torque", false, Status::kOutOfRange},
-      {c.max_specific_force, "max_specific_force", false, Status::kOutOfRange},
-      {c.max_substep_phase_rad, "max_substep_phase_rad", false, Status::kOutOfRange},
-  };
-  for (const Field& f : fields) {
-    if (!std::isfinite(f.value)) return {Status::kNonFiniteInput, f.name};
-    if (f.zero_allowed ? f.value < T(0) : !(f.value > T(0))) return {f.if_not, f.name};
-  }
+  const FieldRefusal r = first_refusal<RealFields>(c);
+  if (r.status != Status::kOk) return {r.status, r.field};
   if (!(c.spin_inertia <= T(2) * c.rotor_transverse_inertia)) {
     return {Status::kOutOfRange, "rotor_transverse_inertia"};  // J0 <= 2A for a rigid rotor
   }
   const Vector3<T>* gimbals[] = {&c.inner_gimbal_inertia, &c.outer_gimbal_inertia};
   const char* gimbal_names[] = {"inner_gimbal_inertia", "outer_gimbal_inertia"};
   for (int i = 0; i < 2; ++i) {
-    if (!all_finite(*gimbals[i])) return {Status::kNonFiniteInput, gimbal_names[i]};
-    if (gimbals[i]->minCoeff() < T(0)) return {Status::kNonPositiveInertia, gimbal_names[i]};
     if (!gimbal_detail::is_physical(*gimbals[i])) return {Status::kOutOfRange, gimbal_names[i]};
   }
   // Transverse inertias beyond a million times the spin inertia are no gyro (and their sums
@@ -145,7 +158,6 @@ template <typename T>
   for (int i = 0; i < 2; ++i) {
     if (!(gimbals[i]->maxCoeff() <= kMaxInertiaRatio<T> * c.spin_inertia)) return {Status::kOutOfRange, gimbal_names[i]};
   }
-  if (!std::isfinite(c.mass_unbalance)) return {Status::kNonFiniteInput, "mass_unbalance"};
   if (c.spin_drive != SpinDrive::kMotor && c.spin_drive != SpinDrive::kFree) {
     return {Status::kOutOfRange, "spin_drive"};
   }

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "gyro/config_fields.hpp"
 #include "gyro/fault_schedule.hpp"
 #include "gyro/gyro_port.hpp"
 #include "gyro/noise.hpp"
@@ -31,23 +32,28 @@ struct PickoffModel {
   T range_rad{};                            // readings saturate at +-range (0 = none)
 };
 
+// The fields (gyro/config_fields.hpp), named as SimulatedGyroConfig's check names them; each
+// optional (0: none).
+template <typename T>
+struct FieldTable<PickoffModel<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Rule kNonNeg = Rule::kNonNegative;
+    constexpr Status kRange = Status::kOutOfRange;
+    constexpr Presence kOpt = Presence::kOptional;
+    v(Field{"pickoff.lsb_rad", kNonNeg, kRange, kOpt}, c.lsb_rad...);
+    v(Field{"pickoff.bias_rad", Rule::kFinite, kRange, kOpt}, c.bias_rad...);
+    v(Field{"pickoff.lag_s", kNonNeg, kRange, kOpt}, c.lag_s...);
+    v(Field{"pickoff.noise_rad", kNonNeg, kRange, kOpt}, c.noise_rad...);
+    v(Field{"pickoff.range_rad", kNonNeg, kRange, kOpt}, c.range_rad...);
+  }
+};
+
 template <typename T>
 [[nodiscard]] ConfigCheck check(const PickoffModel<T>& p) noexcept {
-  struct NonNegative {
-    T value;
-    const char* name;
-  };
-  const NonNegative fields[] = {
-      {p.lsb_rad, "pickoff.lsb_rad"},
-      {p.lag_s, "pickoff.lag_s"},
-      {p.noise_rad, "pickoff.noise_rad"},
-      {p.range_rad, "pickoff.range_rad"},
-  };
-  for (const NonNegative& n : fields) {
-    if (!std::isfinite(n.value)) return {Status::kNonFiniteInput, n.name};
-    if (n.value < T(0)) return {Status::kOutOfRange, n.name};
-  }
-  if (!all_finite(p.bias_rad)) return {Status::kNonFiniteInput, "pickoff.bias_rad"};
+  const FieldRefusal r = first_refusal<RealFields>(p);
+  if (r.status != Status::kOk) return {r.status, r.field};
   if (p.range_rad > T(0) && p.lsb_rad > p.range_rad) return {Status::kOutOfRange, "pickoff.lsb_rad"};
   return {};
 }

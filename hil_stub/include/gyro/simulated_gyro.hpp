@@ -73,6 +73,30 @@ struct SimulatedGyroConfig {
   FaultList<T> faults{};
 };
 
+// The fields (gyro/config_fields.hpp). A scenario gives the report plant's in "rotor" and
+// "limits" with the model's (GyroModelConfig), the faults in its own terms.
+template <typename T>
+struct FieldTable<SimulatedGyroConfig<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Status kRange = Status::kOutOfRange;
+    constexpr Presence kReq = Presence::kRequired, kOpt = Presence::kOptional, kImplied = Presence::kImplied;
+    v(Field{"plant", Rule::kNone, kRange, kImplied}, c.plant...);
+    v(Field{"gyro", Rule::kNone, kRange, kImplied}, c.gyro...);
+    v(Field{"spin_down_time_constant_s", Rule::kNone, kRange, kOpt, "rotor"}, c.spin_down_time_constant_s...);
+    v(Field{"gimbal_stop_rad", Rule::kNone, kRange, kOpt, "limits"}, c.gimbal_stop_rad...);
+    v(Field{"gimbal", Rule::kNone, kRange, kImplied}, c.gimbal...);
+    v(Field{"tick_s", Rule::kPositive, Status::kNonPositiveStep, kImplied}, c.tick_s...);
+    v(Field{"spin_hz", Rule::kPositive, kRange, kReq, "rotor"}, c.spin_hz...);
+    v(Field{"has_spin_readback", Rule::kNone, kRange, kReq, "rotor"}, c.has_spin_readback...);
+    v(Field{"pickoff", Rule::kNone, kRange, kOpt}, c.pickoff...);
+    v(Field{"torquer", Rule::kNone, kRange, kOpt}, c.torquer...);
+    v(Field{"seed", Rule::kNone, kRange, kOpt}, c.seed...);
+    v(Field{"faults", Rule::kNone, kRange, kImplied}, c.faults...);
+  }
+};
+
 // The report's plant: its exact step over a tick at the spin it starts with (the largest: the
 // spin only runs down) must be representable, or advance() would refuse every tick; the
 // refusal names the field responsible (gyro/exact_step_check.hpp).

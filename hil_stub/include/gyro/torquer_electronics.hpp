@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "gyro/config_fields.hpp"
 #include "gyro/fault_schedule.hpp"
 
 namespace gyro {
@@ -17,12 +18,21 @@ struct TorquerModel {
   T max_torque{};                               // saturation per axis (0 = none)
 };
 
+// The fields (gyro/config_fields.hpp), named as SimulatedGyroConfig's check names them.
+template <typename T>
+struct FieldTable<TorquerModel<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    v(Field{"torquer.scale_factor", Rule::kFinite, Status::kOutOfRange, Presence::kOptional}, c.scale_factor...);
+    v(Field{"torquer.max_torque", Rule::kNonNegative, Status::kOutOfRange, Presence::kOptional}, c.max_torque...);
+  }
+};
+
 template <typename T>
 [[nodiscard]] ConfigCheck check(const TorquerModel<T>& t) noexcept {
-  if (!std::isfinite(t.max_torque)) return {Status::kNonFiniteInput, "torquer.max_torque"};
-  if (t.max_torque < T(0)) return {Status::kOutOfRange, "torquer.max_torque"};
-  if (!all_finite(t.scale_factor)) return {Status::kNonFiniteInput, "torquer.scale_factor"};
-  return {};
+  const FieldRefusal r = first_refusal<RealFields>(t);
+  return {r.status, r.field};
 }
 
 template <typename T>

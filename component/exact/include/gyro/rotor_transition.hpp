@@ -230,10 +230,9 @@ template <typename T>
 
 namespace detail {
 
-// advance()'s cold path: which refusal (kept out of line, so that advance() inlines).
+// advance()'s cold path: which refusal.
 template <typename T>
-[[nodiscard]] __attribute__((noinline, cold)) Status advance_refusal(const Vector2<T>& torque,
-                                                                   const RotorState<T>& state) noexcept {
+[[nodiscard]] Status advance_refusal(const Vector2<T>& torque, const RotorState<T>& state) noexcept {
   return all_finite(torque, state.angle_rad, state.rate_rad_s) ? Status::kNumericalOverflow : Status::kNonFiniteInput;
 }
 

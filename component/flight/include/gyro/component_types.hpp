@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "gyro/attitude.hpp"
+#include "gyro/config_fields.hpp"
 #include "gyro/status.hpp"
 
 namespace gyro {
@@ -31,6 +32,10 @@ enum class GyroMode : std::uint8_t { kIdle = 0, kCaged, kUncaging, kFree, kFault
 
 // What guidance asks for this tick.
 enum class ModeRequest : std::uint8_t { kNone = 0, kCage, kUncage };
+// The names of the requests in scenario files and logs, in enum order.
+[[nodiscard]] constexpr std::array<const char*, 3> enum_names(ModeRequest) noexcept {
+  return {"none", "cage", "uncage"};
+}
 
 // Flag bits, raised for the tick in which the condition holds (telemetry.flags) and counted
 // (telemetry.counters, index = bit number). The inputs a tick ignored are flagged here too:
@@ -107,6 +112,46 @@ struct GyroComponentConfig {
   std::uint32_t max_tick_gap{8};               // largest tick-count jump bridged as lost ticks
   std::uint32_t input_persistence_ticks{50};   // unusable guidance input -> fault
   T max_body_rate_rad_s{T(100)};               // navigation rates beyond this are not believed
+};
+
+// The fields of GyroComponentConfig (gyro/config_fields.hpp); check() adds the cross-field rules.
+template <typename T>
+struct FieldTable<GyroComponentConfig<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Rule kPos = Rule::kPositive, kNonNeg = Rule::kNonNegative, kCount = Rule::kNonZero;
+    constexpr Status kRange = Status::kOutOfRange, kInertia = Status::kNonPositiveInertia;
+    constexpr Presence kOpt = Presence::kOptional;
+    v(Field{"tick_s", kPos, Status::kNonPositiveStep, Presence::kImplied}, c.tick_s...);
+    v(Field{"pitch_inertia", kPos, kInertia}, c.pitch_inertia...);
+    v(Field{"yaw_inertia", kPos, kInertia}, c.yaw_inertia...);
+    v(Field{"spin_inertia", kPos, kInertia}, c.spin_inertia...);
+    v(Field{"friction", kNonNeg, Status::kNegativeFriction}, c.friction...);
+    v(Field{"nominal_spin_hz", kPos, kRange}, c.nominal_spin_hz...);
+    v(Field{"min_spin_hz", kNonNeg, kRange}, c.min_spin_hz...);
+    v(Field{"use_spin_readback", Rule::kNone, kRange, kOpt}, c.use_spin_readback...);
+    v(Field{"max_pitch_rate_rad_s", kPos, kRange}, c.max_pitch_rate_rad_s...);
+    v(Field{"max_yaw_rate_rad_s", kPos, kRange}, c.max_yaw_rate_rad_s...);
+    v(Field{"max_torque", kPos, kRange}, c.max_torque...);
+    v(Field{"friction_compensation", Rule::kNone, kRange, kOpt}, c.friction_compensation...);
+    v(Field{"cage_gain_1_s", kNonNeg, kRange}, c.cage_gain_1_s...);
+    v(Field{"gimbal_cone_limit_rad", kPos, kRange}, c.gimbal_cone_limit_rad...);
+    v(Field{"gimbal_stop_margin_rad", kNonNeg, kRange}, c.gimbal_stop_margin_rad...);
+    v(Field{"small_angle_limit_rad", kPos, kRange, kOpt}, c.small_angle_limit_rad...);
+    v(Field{"pickoff_range_rad", kPos, kRange}, c.pickoff_range_rad...);
+    v(Field{"max_pickoff_step_rad", kPos, kRange}, c.max_pickoff_step_rad...);
+    v(Field{"estimator_gain", kNonNeg, kRange}, c.estimator_gain...);
+    v(Field{"residual_limit_rad", kPos, kRange}, c.residual_limit_rad...);
+    v(Field{"residual_persistence_ticks", kCount, kRange}, c.residual_persistence_ticks...);
+    v(Field{"invalid_persistence_ticks", kCount, kRange}, c.invalid_persistence_ticks...);
+    v(Field{"spin_low_persistence_ticks", kCount, kRange}, c.spin_low_persistence_ticks...);
+    v(Field{"torquer_fail_persistence_ticks", kCount, kRange}, c.torquer_fail_persistence_ticks...);
+    v(Field{"uncage_settle_ticks", Rule::kNone, kRange}, c.uncage_settle_ticks...);
+    v(Field{"max_tick_gap", kCount, kRange, kOpt}, c.max_tick_gap...);
+    v(Field{"input_persistence_ticks", kCount, kRange, kOpt}, c.input_persistence_ticks...);
+    v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt}, c.max_body_rate_rad_s...);
+  }
 };
 
 // Navigation and guidance for one tick. A field that cannot be used is ignored and flagged;

@@ -411,7 +411,7 @@ class GyroComponent {
   // kComponentFlagCount passes; none on a clean tick).
   void count(std::uint32_t flags) noexcept {
     std::uint32_t left = flags & ((1u << static_cast<unsigned>(kComponentFlagCount)) - 1u);
-    while (left != 0u) {
+    for (int pass = 0; pass < kComponentFlagCount && left != 0u; ++pass) {
       const std::uint32_t lowest = left & (~left + 1u);  // the lowest raised flag
       std::uint32_t& c = telemetry_.counters[bit_index(lowest)];
       c = sat_inc(c);

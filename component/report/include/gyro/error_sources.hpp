@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gyro/config_fields.hpp"
 #include "gyro/rotor_parameters.hpp"
 
 namespace gyro {
@@ -29,13 +30,33 @@ struct GyroErrorSources {
   AxisErrorSources<T> yaw{};    // drifts of psi'   (the report's GERROR(:,1))
 };
 
-namespace detail {
+// The fields (gyro/config_fields.hpp): any finite value, each optional (0: none).
+template <typename T>
+struct FieldTable<AxisErrorSources<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Presence kOpt = Presence::kOptional;
+    v(Field{"static_drift_rad_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.static_drift_rad_s...);
+    v(Field{"in_plane_erection_1_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.in_plane_erection_1_s...);
+    v(Field{"cross_plane_erection_1_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.cross_plane_erection_1_s...);
+    v(Field{"g_sensitive_drift_rad_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.g_sensitive_drift_rad_s...);
+    v(Field{"torquer_cross_coupling", Rule::kFinite, Status::kOutOfRange, kOpt}, c.torquer_cross_coupling...);
+    v(Field{"coulomb_friction_rad_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.coulomb_friction_rad_s...);
+  }
+};
 
 template <typename T>
-[[nodiscard]] bool axis_finite(const AxisErrorSources<T>& e) noexcept {
-  return all_finite(e.static_drift_rad_s, e.in_plane_erection_1_s, e.cross_plane_erection_1_s,
-                    e.g_sensitive_drift_rad_s, e.torquer_cross_coupling, e.coulomb_friction_rad_s);
-}
+struct FieldTable<GyroErrorSources<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    v(Field{"pitch", Rule::kFinite, Status::kOutOfRange, Presence::kOptional}, c.pitch...);
+    v(Field{"yaw", Rule::kFinite, Status::kOutOfRange, Presence::kOptional}, c.yaw...);
+  }
+};
+
+namespace detail {
 
 // x limited to [-limit, limit].
 template <typename T>
@@ -53,7 +74,7 @@ template <typename T>
 
 template <typename T>
 [[nodiscard]] bool all_finite(const GyroErrorSources<T>& e) noexcept {
-  return detail::axis_finite(e.pitch) && detail::axis_finite(e.yaw);
+  return all_fields_finite(e);
 }
 
 // Whether error_drift() depends on the gimbal angles (an erection term is set).

@@ -44,6 +44,31 @@ struct GyroModelConfig {
   TorquerAxes torquer_axes{TorquerAxes::kGyro};
 };
 
+// The fields (gyro/config_fields.hpp); a scenario gives them in its "rotor" and "limits".
+template <typename T>
+struct FieldTable<GyroModelConfig<T>> {
+  static constexpr bool kDefined = true;
+  template <class Visit, class... C>
+  static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Rule kPos = Rule::kPositive, kNonNeg = Rule::kNonNegative;
+    constexpr Status kRange = Status::kOutOfRange, kInertia = Status::kNonPositiveInertia;
+    constexpr Presence kReq = Presence::kRequired, kOpt = Presence::kOptional;
+    v(Field{"pitch_inertia", kPos, kInertia, kReq, "rotor"}, c.pitch_inertia...);
+    v(Field{"yaw_inertia", kPos, kInertia, kReq, "rotor"}, c.yaw_inertia...);
+    v(Field{"spin_inertia", kPos, kInertia, kReq, "rotor"}, c.spin_inertia...);
+    v(Field{"friction", kNonNeg, Status::kNegativeFriction, kReq, "rotor"}, c.friction...);
+    v(Field{"gimbal_cone_limit_rad", kPos, kRange, kReq, "limits"}, c.gimbal_cone_limit_rad...);
+    v(Field{"pitch_gimbal_limit_rad", kNonNeg, kRange, kOpt, "limits"}, c.pitch_gimbal_limit_rad...);
+    v(Field{"yaw_gimbal_limit_rad", kNonNeg, kRange, kOpt, "limits"}, c.yaw_gimbal_limit_rad...);
+    v(Field{"max_pitch_rate_rad_s", kPos, kRange, kReq, "limits"}, c.max_pitch_rate_rad_s...);
+    v(Field{"max_yaw_rate_rad_s", kPos, kRange, kReq, "limits"}, c.max_yaw_rate_rad_s...);
+    v(Field{"small_angle_limit_rad", kPos, kRange, kOpt, "limits"}, c.small_angle_limit_rad...);
+    v(Field{"gravity", kPos, kRange}, c.gravity...);
+    v(Field{"errors", Rule::kFinite, kRange, kOpt}, c.errors...);
+    v(Field{"torquer_axes", Rule::kNone, kRange, Presence::kImplied}, c.torquer_axes...);
+  }
+};
+
 // Names the configuration field a refusal is about (nullptr when accepted).
 struct ConfigCheck {
   Status status{Status::kOk};
@@ -53,35 +78,11 @@ struct ConfigCheck {
 
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GyroModelConfig<T>& c) noexcept {
-  struct Positive {
-    T value;
-    const char* name;
-    Status if_not_positive;
-  };
-  const Positive positive[] = {
-      {c.pitch_inertia, "pitch_inertia", Status::kNonPositiveInertia},
-      {c.yaw_inertia, "yaw_inertia", Status::kNonPositiveInertia},
-      {c.spin_inertia, "spin_inertia", Status::kNonPositiveInertia},
-      {c.gimbal_cone_limit_rad, "gimbal_cone_limit_rad", Status::kOutOfRange},
-      {c.max_pitch_rate_rad_s, "max_pitch_rate_rad_s", Status::kOutOfRange},
-      {c.max_yaw_rate_rad_s, "max_yaw_rate_rad_s", Status::kOutOfRange},
-      {c.small_angle_limit_rad, "small_angle_limit_rad", Status::kOutOfRange},
-      {c.gravity, "gravity", Status::kOutOfRange},
-  };
-  for (const Positive& p : positive) {
-    if (!std::isfinite(p.value)) return {Status::kNonFiniteInput, p.name};
-    if (!(p.value > T(0))) return {p.if_not_positive, p.name};
-  }
-  if (!std::isfinite(c.friction)) return {Status::kNonFiniteInput, "friction"};
-  if (c.friction < T(0)) return {Status::kNegativeFriction, "friction"};
+  const FieldRefusal r = first_refusal<RealFields>(c);
+  if (r.status != Status::kOk) return {r.status, r.field};
   if (!(c.gimbal_cone_limit_rad < kPi<T>)) return {Status::kOutOfRange, "gimbal_cone_limit_rad"};
-  const T axis_limits[] = {c.pitch_gimbal_limit_rad, c.yaw_gimbal_limit_rad};
-  const char* axis_names[] = {"pitch_gimbal_limit_rad", "yaw_gimbal_limit_rad"};
-  for (int i = 0; i < 2; ++i) {
-    if (!std::isfinite(axis_limits[i])) return {Status::kNonFiniteInput, axis_names[i]};
-    if (axis_limits[i] < T(0) || !(axis_limits[i] < kPi<T>)) return {Status::kOutOfRange, axis_names[i]};
-  }
-  if (!all_finite(c.errors)) return {Status::kNonFiniteInput, "errors"};
+  if (!(c.pitch_gimbal_limit_rad < kPi<T>)) return {Status::kOutOfRange, "pitch_gimbal_limit_rad"};
+  if (!(c.yaw_gimbal_limit_rad < kPi<T>)) return {Status::kOutOfRange, "yaw_gimbal_limit_rad"};
   if (c.torquer_axes != TorquerAxes::kGyro && c.torquer_axes != TorquerAxes::kGimbal) {
     return {Status::kOutOfRange, "torquer_axes"};
   }

@@ -21,7 +21,8 @@
 //
 // Payloads (little-endian; R = one real of the target's scalar, binary32 or binary64):
 //   hello       u16 version | u8 real bytes | u32 timer clock Hz                       7
-//   config      18 R component reals | u8 switches | 5 x u32 counts | u32 timer period  18 R + 25
+//   config      the component's reals | u8 switches | u32 counts | u32 timer period  19 R + 33
+//               (each in its field table's order, gyro/config_fields.hpp)
 //   config_ack  u8 status | 24 chars of the refused field's name (NUL-padded)          25
 //   tick_in     u32 tick | u8 gyro bytes N | u8 request (bits 0-1), nav valid (bit 2)
 //               | R slew[2] | R R_earth_to_body[9] (row-major) | R body rate[2]      6 + 13 R
@@ -59,8 +60,12 @@ inline constexpr std::uint8_t kTickOut = 0x14u;
 inline constexpr std::uint8_t kTelemetry = 0x15u;
 inline constexpr std::uint8_t kStop = 0x16u;
 
-inline constexpr std::size_t kConfigReals = 19;
-inline constexpr std::size_t kConfigCounts = 7;
+// The configuration message carries GyroComponentConfig's numbers, then its switches as the
+// bits of one byte, then its counts, each in the order of its field table.
+inline constexpr std::size_t kConfigReals = count_fields<GyroComponentConfig<float>, std::is_floating_point>();
+inline constexpr std::size_t kConfigCounts = count_fields<GyroComponentConfig<float>, CountFields>();
+inline constexpr std::size_t kConfigSwitches = count_fields<GyroComponentConfig<float>, SwitchFields>();
+static_assert(kConfigSwitches <= 8, "the switches travel as the bits of one byte");
 inline constexpr std::size_t kTelemetryReals = 19;
 inline constexpr std::size_t kFieldNameBytes = 24;
 
@@ -143,38 +148,7 @@ struct TickOut {
 };
 
 // ---- member tables: one list per struct, read by the encoder and the decoder alike ---------
-
-template <typename T>
-struct ConfigFields {
-  using C = GyroComponentConfig<T>;
-  static constexpr T C::*kReals[kConfigReals] = {
-      &C::tick_s,
-      &C::pitch_inertia,
-      &C::yaw_inertia,
-      &C::spin_inertia,
-      &C::friction,
-      &C::nominal_spin_hz,
-      &C::min_spin_hz,
-      &C::max_pitch_rate_rad_s,
-      &C::max_yaw_rate_rad_s,
-      &C::max_torque,
-      &C::cage_gain_1_s,
-      &C::gimbal_cone_limit_rad,
-      &C::gimbal_stop_margin_rad,
-      &C::small_angle_limit_rad,
-      &C::pickoff_range_rad,
-      &C::max_pickoff_step_rad,
-      &C::estimator_gain,
-      &C::residual_limit_rad,
-      &C::max_body_rate_rad_s,
-  };
-  static constexpr std::uint32_t C::*kCounts[kConfigCounts] = {
-      &C::residual_persistence_ticks,     &C::invalid_persistence_ticks, &C::spin_low_persistence_ticks,
-      &C::torquer_fail_persistence_ticks, &C::uncage_settle_ticks,       &C::max_tick_gap,
-      &C::input_persistence_ticks,
-  };
-  static constexpr bool C::*kSwitches[2] = {&C::use_spin_readback, &C::friction_compensation};
-};
+// (GyroComponentConfig's is its field table, gyro/config_fields.hpp.)
 
 template <typename T>
 struct TelemetryFields {
@@ -275,9 +249,12 @@ template <typename T>
 
 }  // namespace detail
 
-// Every member of the configuration is in the tables (a new one breaks the build here).
-static_assert(detail::field_count<GyroComponentConfig<float>>() == kConfigReals + kConfigCounts + 2,
-              "GyroComponentConfig changed: update ConfigFields (and docs/pil-protocol.md)");
+// Every member of the configuration has a row in its field table, and the message carries
+// every row (a member of another kind breaks the build here).
+static_assert(detail::field_count<GyroComponentConfig<float>>() == count_fields<GyroComponentConfig<float>, AnyField>(),
+              "a GyroComponentConfig member without a row in its field table");
+static_assert(kConfigReals + kConfigCounts + kConfigSwitches == count_fields<GyroComponentConfig<float>, AnyField>(),
+              "the configuration message carries numbers, counts and switches only");
 
 template <typename T>
 [[nodiscard]] HarnessFrame<T> encode_hello(const Hello& h, std::uint8_t seq) noexcept {
@@ -305,13 +282,21 @@ template <typename T>
 [[nodiscard]] HarnessFrame<T> encode_config(const Config<T>& c, std::uint8_t seq) noexcept {
   HarnessFrame<T> f = detail::start<T>(kConfig, seq);
   link::WireWriter w(f.payload, 0);
-  for (T GyroComponentConfig<T>::*m : ConfigFields<T>::kReals) w.real(c.component.*m);
+  visit_fields([&w](const Field&, const auto& m) noexcept {
+    if constexpr (std::is_same_v<std::decay_t<decltype(m)>, T>) w.real(m);
+  }, c.component);
   std::uint8_t switches = 0;
-  for (std::size_t i = 0; i < 2; ++i) {
-    if (c.component.*ConfigFields<T>::kSwitches[i]) switches = static_cast<std::uint8_t>(switches | (1u << i));
-  }
+  unsigned bit = 0;
+  visit_fields([&](const Field&, const auto& m) noexcept {
+    if constexpr (std::is_same_v<std::decay_t<decltype(m)>, bool>) {
+      if (m) switches = static_cast<std::uint8_t>(switches | (1u << bit));
+      ++bit;
+    }
+  }, c.component);
   w.u8(switches);
-  for (std::uint32_t GyroComponentConfig<T>::*m : ConfigFields<T>::kCounts) w.u32(c.component.*m);
+  visit_fields([&w](const Field&, const auto& m) noexcept {
+    if constexpr (std::is_same_v<std::decay_t<decltype(m)>, std::uint32_t>) w.u32(m);
+  }, c.component);
   w.u32(c.timer_period);
   return detail::seal<T>(f, w);
 }
@@ -320,11 +305,18 @@ template <typename T>
   if (!detail::is<T>(f, kConfig)) return false;
   link::WireReader r(f.payload, 0);
   Config<T> c;
-  for (T GyroComponentConfig<T>::*m : ConfigFields<T>::kReals) c.component.*m = r.template real<T>();
+  visit_fields([&r](const Field&, auto& m) noexcept {
+    if constexpr (std::is_same_v<std::decay_t<decltype(m)>, T>) m = r.template real<T>();
+  }, c.component);
   const std::uint8_t switches = r.u8();
-  if ((switches & ~0x3u) != 0u) return false;
-  for (std::size_t i = 0; i < 2; ++i) c.component.*ConfigFields<T>::kSwitches[i] = ((switches >> i) & 1u) != 0u;
-  for (std::uint32_t GyroComponentConfig<T>::*m : ConfigFields<T>::kCounts) c.component.*m = r.u32();
+  if ((switches >> kConfigSwitches) != 0u) return false;
+  unsigned bit = 0;
+  visit_fields([&](const Field&, auto& m) noexcept {
+    if constexpr (std::is_same_v<std::decay_t<decltype(m)>, bool>) m = ((switches >> bit++) & 1u) != 0u;
+  }, c.component);
+  visit_fields([&r](const Field&, auto& m) noexcept {
+    if constexpr (std::is_same_v<std::decay_t<decltype(m)>, std::uint32_t>) m = r.u32();
+  }, c.component);
   c.timer_period = r.u32();
   if (!detail::consumed(r, f.length)) return false;
   out = c;

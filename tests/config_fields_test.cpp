@@ -1,0 +1,248 @@
+// The configuration field tables (gyro/config_fields.hpp): what check() refuses through them,
+// the lockstep cast, and docs/scenarios.md's field tables against them (so they cannot drift).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gyro/component_config.hpp"
+#include "gyro/seeker_example.hpp"
+#include "gyro/simulated_gyro.hpp"
+
+namespace gyro {
+namespace {
+
+// Every field of a table, by name, with its row.
+template <class Config>
+std::map<std::string, Field> rows_of(const Config& c) {
+  std::map<std::string, Field> out;
+  visit_fields([&](const Field& f, const auto&) { out.emplace(f.name, f); }, c);
+  return out;
+}
+
+TEST(ConfigFields, GivenEachTableWHENVisitedTHENEveryNameIsUniqueAndRefusalsAreFailures) {
+  const auto check_table = [](const auto& config) {
+    int rows = 0;
+    std::set<std::string> names;
+    visit_fields(
+        [&](const Field& f, const auto&) {
+          ++rows;
+          EXPECT_TRUE(names.insert(f.name).second) << f.name;
+          EXPECT_NE(f.refusal, Status::kOk) << f.name;
+        },
+        config);
+    EXPECT_EQ(static_cast<std::size_t>(rows), names.size());
+    EXPECT_GT(rows, 0);
+  };
+  const SimulatedGyroConfig<double> stub{};
+  check_table(GyroComponentConfig<double>{});
+  check_table(stub.gyro);
+  check_table(stub.gyro.errors.pitch);
+  check_table(stub.gimbal);
+  check_table(stub.pickoff);
+  check_table(stub.torquer);
+  check_table(stub);
+}
+
+// Each number's own rule, field by field: a breach is refused naming that field with the
+// row's status (and a NaN with kNonFiniteInput).
+TEST(ConfigFields, GivenTheSeekerComponentWHENOneNumberBreaksItsRuleTHENCheckNamesIt) {
+  const GyroComponentConfig<double> good = SeekerExample<double>::component();
+  ASSERT_TRUE(check(good).ok());
+  int breached = 0;
+  visit_fields(
+      [&](const Field& f, const auto& member) {
+        using M = std::decay_t<decltype(member)>;
+        if constexpr (std::is_same_v<M, double>) {
+          if (f.rule == Rule::kNone) return;
+          for (const double bad : {std::nan(""), f.rule == Rule::kPositive ? 0.0 : -1.0}) {
+            GyroComponentConfig<double> c = good;
+            visit_fields(
+                [&](const Field& g, auto& m) {
+                  if constexpr (std::is_same_v<std::decay_t<decltype(m)>, double>) {
+                    if (std::string(g.name) == f.name) m = bad;
+                  }
+                },
+                c);
+            const ConfigCheck r = check(c);
+            EXPECT_EQ(r.status, std::isnan(bad) ? Status::kNonFiniteInput : f.refusal) << f.name;
+            ASSERT_NE(r.field, nullptr) << f.name;
+            EXPECT_STREQ(r.field, f.name);
+            ++breached;
+          }
+        } else if constexpr (std::is_same_v<M, std::uint32_t>) {
+          if (f.rule != Rule::kNonZero) return;
+          GyroComponentConfig<double> c = good;
+          visit_fields(
+              [&](const Field& g, auto& m) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(m)>, std::uint32_t>) {
+                  if (std::string(g.name) == f.name) m = 0;
+                }
+              },
+              c);
+          const ConfigCheck r = check(c);
+          EXPECT_EQ(r.status, f.refusal) << f.name;
+          ASSERT_NE(r.field, nullptr) << f.name;
+          EXPECT_STREQ(r.field, f.name);
+          ++breached;
+        }
+      },
+      good);
+  EXPECT_GE(breached, 2 * 19 + 6);  // the 19 numbers and 6 counts with a rule of their own
+}
+
+TEST(ConfigFields, GivenADoubleStubConfigurationWHENCastToFloatTHENEveryFieldIsCarried) {
+  SimulatedGyroConfig<double> d = SeekerExample<double>::stub();
+  d.seed = 77;
+  d.gyro.errors.yaw.coulomb_friction_rad_s = 0.125;
+  d.pickoff.bias_rad = Vector2<double>(0.25, -0.5);
+  d.faults[3] = FaultEvent<double>{FaultKind::kBiasJump, 5, 6, 1, 0.1};
+  SimulatedGyroConfig<float> f;
+  cast_fields(d, f);
+  EXPECT_EQ(f.plant, d.plant);
+  EXPECT_EQ(f.seed, 77u);
+  EXPECT_EQ(f.tick_s, static_cast<float>(d.tick_s));
+  EXPECT_EQ(f.gyro.errors.yaw.coulomb_friction_rad_s, 0.125f);
+  EXPECT_EQ(f.gimbal.inner_gimbal_inertia, d.gimbal.inner_gimbal_inertia.cast<float>());
+  EXPECT_EQ(f.gimbal.spin_drive, d.gimbal.spin_drive);
+  EXPECT_EQ(f.pickoff.bias_rad, Vector2<float>(0.25f, -0.5f));
+  EXPECT_EQ(f.faults[3].kind, FaultKind::kBiasJump);
+  EXPECT_EQ(f.faults[3].duration_ticks, 6u);
+  EXPECT_EQ(f.faults[3].magnitude, 0.1f);
+  // Back to double: every field that is exact in float comes back as it was.
+  SimulatedGyroConfig<double> back;
+  cast_fields(f, back);
+  int differ = 0;
+  visit_fields(
+      [&](const Field&, const auto& a, const auto& b) {
+        using M = std::decay_t<decltype(a)>;
+        if constexpr (std::is_floating_point_v<M>) {
+          if (static_cast<double>(static_cast<float>(a)) != b) ++differ;
+        }
+      },
+      d, back);
+  EXPECT_EQ(differ, 0);
+}
+
+// docs/scenarios.md: the rows of the table under `heading` (up to the next heading), as
+// (keys in backticks of the first cell, the third cell).
+struct DocRow {
+  std::vector<std::string> keys;
+  std::string third;
+  std::string text;
+};
+std::vector<DocRow> doc_table(const std::string& heading) {
+  std::ifstream in(std::string(GYRO_SOURCE_DIR) + "/docs/scenarios.md");
+  std::string line;
+  bool inside = false;
+  std::vector<DocRow> rows;
+  while (std::getline(in, line)) {
+    if (line.rfind("#", 0) == 0) {
+      if (inside) break;
+      inside = line == heading;
+      continue;
+    }
+    if (!inside || line.rfind("| `", 0) != 0) continue;
+    for (std::size_t p = line.find("\\|"); p != std::string::npos; p = line.find("\\|", p)) line.replace(p, 2, "/");
+    std::vector<std::string> cells;
+    std::stringstream ss(line.substr(1));
+    std::string cell;
+    while (std::getline(ss, cell, '|')) cells.push_back(cell);
+    DocRow row;
+    row.text = line;
+    row.third = cells.size() > 2 ? cells[2] : "";
+    for (std::size_t p = cells[0].find('`'); p != std::string::npos; p = cells[0].find('`', p + 1)) {
+      const std::size_t q = cells[0].find('`', p + 1);
+      row.keys.push_back(cells[0].substr(p + 1, q - p - 1));
+      p = q;
+    }
+    rows.push_back(row);
+  }
+  EXPECT_FALSE(rows.empty()) << heading;
+  return rows;
+}
+
+bool says_required(const DocRow& r) { return r.third.find("required") != std::string::npos; }
+
+// Every documented key is a table field given in files, and every such field is documented
+// once, marked required exactly when the table requires it.
+template <class Config>
+void expect_documented(const std::string& heading, const Config& c) {
+  const std::string prefix;
+  std::map<std::string, const DocRow*> documented;
+  const std::vector<DocRow> rows = doc_table(heading);
+  for (const DocRow& r : rows) {
+    for (const std::string& k : r.keys) EXPECT_TRUE(documented.emplace(k, &r).second) << k << " twice";
+  }
+  std::set<std::string> fields;
+  visit_fields(
+      [&](const Field& f, const auto&) {
+        if (f.presence == Presence::kImplied) return;
+        const std::string key = prefix + (f.section ? std::string(f.section) + "." : "") + f.name;
+        fields.insert(key);
+        const auto it = documented.find(key);
+        ASSERT_NE(it, documented.end()) << key << " is not in docs/scenarios.md under " << heading;
+        EXPECT_EQ(says_required(*it->second), f.presence == Presence::kRequired) << it->second->text;
+      },
+      c);
+  for (const auto& [k, row] : documented) {
+    (void)row;
+    if (!fields.count(k) && k.rfind(prefix, 0) == 0) ADD_FAILURE() << k << " is documented but no field";
+  }
+}
+
+TEST(ConfigFields, GivenTheScenarioDocsWHENComparedWithTheTablesTHENTheyAgree) {
+  const GyroComponentConfig<double> component{};
+  const GimbalPlantConfig<double> gimbal{};
+  expect_documented("### `component` (the flight software)", component);
+  expect_documented("#### `gyro.gimbal` (plant `gimbal`)", gimbal);
+
+  // gyro: the model's and the stub's fields, the pickoff and torquer ones, the error sources.
+  const std::vector<DocRow> rows = doc_table("### `gyro` (the simulated hardware)");
+  std::set<std::string> documented;
+  std::string all;
+  for (const DocRow& r : rows) {
+    documented.insert(r.keys.begin(), r.keys.end());
+    all += r.text;
+  }
+  std::set<std::string> fields = {"plant", "faults"};  // schema keys, not fields
+  const auto expect_row = [&](const Field& f, const std::string& key) {
+    fields.insert(key);
+    EXPECT_TRUE(documented.count(key)) << key << " is not in docs/scenarios.md";
+    for (const DocRow& r : rows) {
+      if (std::find(r.keys.begin(), r.keys.end(), key) != r.keys.end()) {
+        EXPECT_EQ(says_required(r), f.presence == Presence::kRequired) << r.text;
+      }
+    }
+  };
+  const auto visit_gyro = [&](const Field& f, const auto& member) {
+    using M = std::decay_t<decltype(member)>;
+    if (f.presence == Presence::kImplied) return;
+    if constexpr (std::is_same_v<M, GyroErrorSources<double>>) {
+      visit_fields([&](const Field& axis, const auto&) { expect_row(axis, std::string(f.name) + "." + axis.name); },
+                   member);
+      visit_fields(
+          [&](const Field& e, const auto&) {
+            EXPECT_NE(all.find(std::string("`") + e.name + "`"), std::string::npos) << e.name;
+          },
+          member.pitch);
+    } else if constexpr (kHasFieldTable<M>) {
+      visit_fields([&](const Field& g, const auto&) { expect_row(g, g.name); }, member);
+    } else {
+      expect_row(f, (f.section ? std::string(f.section) + "." : "") + f.name);
+    }
+  };
+  const SimulatedGyroConfig<double> stub{};
+  visit_fields(visit_gyro, stub);
+  visit_fields(visit_gyro, stub.gyro);
+  for (const std::string& k : documented) EXPECT_TRUE(fields.count(k)) << k << " is documented but no field";
+}
+
+}  // namespace
+}  // namespace gyro

@@ -11,7 +11,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "config_fields.hpp"
+#include "keyword_config.hpp"
 #include "errors.hpp"
 #include "gyro/gyro_model.hpp"
 

@@ -45,7 +45,8 @@ inline constexpr std::array<const char*, static_cast<std::size_t>(kFaultKindCoun
 
 [[nodiscard]] constexpr const char* to_string(FaultKind k) noexcept {
   const auto i = static_cast<std::size_t>(k);
-  return i < kFaultKindNames.size() ? kFaultKindNames[i] : "unknown fault";
+  if (i < kFaultKindNames.size()) return kFaultKindNames[i];
+  return "unknown fault";
 }
 
 // The fault kind's name in scenario files and logs ("stuck_pickoff"); "" for kNone or an

@@ -22,7 +22,7 @@ enum class SpinDrive : std::uint8_t {
   kFree,       // no motor: the rotor runs down against its bearing drag (if any)
 };
 // The names of SpinDrive's values in configuration files, in enum order.
-[[nodiscard]] constexpr std::array<const char*, 2> enum_names(SpinDrive) noexcept { return {"motor", "free"}; }
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(SpinDrive /*tag*/) noexcept { return {"motor", "free"}; }
 
 // About which axes the torquers push and the gimbal friction acts.
 enum class TorqueAxes : std::uint8_t {
@@ -31,7 +31,7 @@ enum class TorqueAxes : std::uint8_t {
   kGyro,        // the report's idealisation: T1, T2 about the gyro's own non-rolling pitch and
                 // yaw axes, friction on the gyro's inertial rates about them
 };
-[[nodiscard]] constexpr std::array<const char*, 2> enum_names(TorqueAxes) noexcept { return {"gimbal", "gyro"}; }
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(TorqueAxes /*tag*/) noexcept { return {"gimbal", "gyro"}; }
 
 template <typename T>
 struct GimbalPlantConfig {

@@ -33,7 +33,7 @@ enum class GyroMode : std::uint8_t { kIdle = 0, kCaged, kUncaging, kFree, kFault
 // What guidance asks for this tick.
 enum class ModeRequest : std::uint8_t { kNone = 0, kCage, kUncage };
 // The names of the requests in scenario files and logs, in enum order.
-[[nodiscard]] constexpr std::array<const char*, 3> enum_names(ModeRequest) noexcept {
+[[nodiscard]] constexpr std::array<const char*, 3> enum_names(ModeRequest /*tag*/) noexcept {
   return {"none", "cage", "uncage"};
 }
 

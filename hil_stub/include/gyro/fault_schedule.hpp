@@ -39,20 +39,20 @@ enum class FaultKind : std::uint8_t {
 inline constexpr int kFaultKindCount = 8;
 
 // The fault kinds' names in scenario files and logs, in enum order.
-inline constexpr std::array<const char*, static_cast<std::size_t>(kFaultKindCount)> kFaultKindNames = {
+inline constexpr const char* kFaultKindNames[kFaultKindCount] = {
     "none",         "stuck_pickoff",     "invalid_reading",    "dropout",
     "bias_jump",    "dead_torquer",      "saturated_torquer",  "spin_motor_failure"};
 
 [[nodiscard]] constexpr const char* to_string(FaultKind k) noexcept {
   const auto i = static_cast<std::size_t>(k);
-  if (i < kFaultKindNames.size()) return kFaultKindNames[i];
+  if (i < std::size(kFaultKindNames)) return kFaultKindNames[i];
   return "unknown fault";
 }
 
 // The fault kind's name in scenario files and logs ("stuck_pickoff"); "" for kNone or an
 // unknown value.
 [[nodiscard]] constexpr const char* fault_kind_name(FaultKind k) noexcept {
-  return k == FaultKind::kNone ? "" : (static_cast<std::size_t>(k) < kFaultKindNames.size() ? to_string(k) : "");
+  return k == FaultKind::kNone ? "" : (static_cast<std::size_t>(k) < std::size(kFaultKindNames) ? to_string(k) : "");
 }
 
 // The bit of a fault kind in active-fault words.

@@ -2,8 +2,12 @@
 # Mutation testing of the flight code: does the host test suite notice when one line of
 # component/ changes? Each mutant of the list (scripts/mutants.tsv: file, exact text,
 # replacement, meaning) is applied alone to a copy of the tree, the test targets are rebuilt
-# incrementally, ctest runs, and the mutant is killed (a test failed or timed out), survived
-# (every test passed) or build-failed. Prints a Markdown table and the score, killed over
+# incrementally, and the mutant is killed (a test failed or timed out), survived (every test
+# passed) or build-failed. The GoogleTest executables are built and run one at a time first,
+# the one that killed the last mutant first, and the first failure kills the mutant (most
+# mutants cost one test executable's build, not the suite's); a mutant they all pass gets the
+# whole build and ctest before it is called survived. A mutant judged on the same tree (the
+# copied sources hashed) is not run again: an interrupted run resumes where it stopped. Prints a Markdown table and the score, killed over
 # the non-equivalent mutants that built. Your checkout is never modified: the copy lives in
 # the scratch directory (build/mutation by default), kept between runs so that they are
 # incremental. On demand only (not in CI): a mutant costs a rebuild plus a ctest run.
@@ -24,6 +28,7 @@
 #   -e         also run the mutants marked equivalent (reported, never scored)
 #   -o FILE    write the Markdown report to FILE as well
 #   -c         check the list against the checkout (each text found exactly once) and stop
+#   -F         forget the verdicts recorded for this tree and judge every mutant again
 # Exit status: 0 when every scored mutant was killed, 1 when one survived, failed to build or
 # was refused, 2 on a usage error or a failing baseline.
 set -euo pipefail
@@ -40,10 +45,11 @@ limit=""
 run_equivalent=0
 report_file=""
 check_only=0
+forget=0
 python="$(command -v /usr/bin/python3 || command -v python3)"
 
 usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
-while getopts "R:E:m:f:d:t:j:T:eo:ch" opt; do
+while getopts "R:E:m:f:d:t:j:T:eo:cFh" opt; do
   case "$opt" in
     R) test_regex="$OPTARG" ;;
     E) exclude_regex="$OPTARG" ;;
@@ -56,6 +62,7 @@ while getopts "R:E:m:f:d:t:j:T:eo:ch" opt; do
     e) run_equivalent=1 ;;
     o) report_file="$OPTARG" ;;
     c) check_only=1 ;;
+    F) forget=1 ;;
     h) usage; exit 0 ;;
     *) usage >&2; exit 2 ;;
   esac
@@ -150,11 +157,12 @@ done
 
 # ---- configure, build and the baseline -------------------------------------------------------
 # Warnings are not errors here: a mutant that leaves a variable unused is still a behaviour
-# to test, not a build failure.
+# to test, not a build failure. No debug information: it doubles the compile time of a test.
 generator=()
 [[ ! -f "$bld/CMakeCache.txt" ]] && command -v ninja > /dev/null && generator=(-G Ninja)
 # No Python module: every mutant of a component header would rebuild its bindings (minutes).
-cmake -S "$src" -B "$bld" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGYRO_BUILD_TESTS=ON \
+cmake -S "$src" -B "$bld" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -DNDEBUG" -DGYRO_BUILD_TESTS=ON \
   -DGYRO_WERROR=OFF -DGYRO_BUILD_PYTHON=OFF > "$logs/configure.log" 2>&1 || { echo "mutation: configure failed ($logs/configure.log)" >&2; exit 2; }
 select_args=()
 [[ -n "$test_regex" ]] && select_args+=(-R "$test_regex")
@@ -205,9 +213,72 @@ baseline_s=$(( $(date +%s) - start ))
 tests_run=$(grep -Eo 'tests passed, 0 tests failed out of [0-9]+' "$logs/baseline-test.log" | grep -Eo '[0-9]+$' || echo "?")
 echo "   $tests_run tests pass in ${baseline_s}s; a mutant's ctest is stopped after ${limit}s"
 
+# ---- the GoogleTest executables of the selected tests, each with its tests as a filter ------
+# (executable, working directory, --gtest_filter): run one at a time before the whole suite.
+mapfile -t stages < <(ctest --test-dir "$bld" --show-only=json-v1 "${select_args[@]}" |
+  "$python" -c '
+import json, os, sys
+bld = os.path.realpath(sys.argv[1])
+groups = {}
+for t in json.load(sys.stdin).get("tests", []):
+    cmd = t.get("command") or [""]
+    exe = os.path.realpath(cmd[0])
+    filt = [a[len("--gtest_filter="):] for a in cmd[1:] if a.startswith("--gtest_filter=")]
+    if not exe.startswith(bld + os.sep) or len(filt) != 1:
+        continue  # not a discovered GoogleTest case: left to the final ctest
+    wd = next((p["value"] for p in t.get("properties", []) if p.get("name") == "WORKING_DIRECTORY"), bld)
+    groups.setdefault((exe, wd), []).append(filt[0])
+for (exe, wd), names in sorted(groups.items()):
+    print("\t".join([exe, wd, ":".join(names)]))' "$bld")
+echo "   ${#stages[@]} test executables run one at a time before the whole suite"
+
+# Runs the stages for the current mutant; sets result/detail when one kills it and moves that
+# executable to the front. Returns 1 when every stage passed (the whole suite decides).
+run_stages() {  # id
+  local k exe wd filt name rc
+  for k in "${!stages[@]}"; do
+    IFS=$'\t' read -r exe wd filt <<< "${stages[$k]}"
+    name="$(basename "$exe")"
+    if ! build "$logs/$1.build.log" "$name"; then
+      result="build-failed"
+      detail="$(grep -m1 -E 'error:' "$logs/$1.build.log" | sed -E 's/^[^ ]*: error: //; s/\|/\\|/g' | cut -c1-100)"
+      return 0
+    fi
+    rc=0
+    (cd "$wd" && timeout -k 10 "$limit" "$exe" --gtest_filter="$filt" --gtest_brief=1) \
+      > "$logs/$1.test.log" 2>&1 || rc=$?
+    if (( rc != 0 )); then
+      result="killed"
+      if (( rc == 124 || rc == 137 )); then
+        detail="$name timed out after ${limit}s"
+      else
+        detail="$(grep -Eo '^\[  FAILED  \] [A-Za-z0-9_/.]+' "$logs/$1.test.log" | sed -E 's/^\[  FAILED  \] //' |
+          sort -u | head -3 | paste -sd ' ' -)"
+        detail="$name: ${detail:-exit status $rc}"
+      fi
+      stages=("${stages[$k]}" "${stages[@]:0:$k}" "${stages[@]:$((k + 1))}")
+      return 0
+    fi
+  done
+  return 1
+}
+
+# Verdicts recorded for this tree and this test selection: every copied file hashed but the
+# prose (*.md, except docs/scenarios.md, which a test reads) and this script and its list.
+verdicts="$scratch/verdicts.tsv"
+tree_key="$(git -C "$root" ls-files -z --cached --others --exclude-standard |
+  grep -zvP '^scripts/(mutation\.sh|mutants\.tsv)$|^(?!docs/scenarios\.md$).*\.md$' |
+  (cd "$src" && xargs -0 sha1sum 2> /dev/null) | sha1sum | cut -c1-16)"
+(( forget )) && rm -f "$verdicts"
+touch "$verdicts"
+verdict_key() {  # index
+  printf '%s\x1f' "$tree_key" "${select_args[@]}" "${files[$1]}" "${texts[$1]}" "${repls[$1]}" |
+    sha1sum | cut -c1-16
+}
+
 # ---- the mutants -------------------------------------------------------------------------------
 results=() details=() times=()
-killed=0 survived=0 build_failed=0 refused=0 equivalent=0
+killed=0 survived=0 build_failed=0 refused=0 equivalent=0 reused=0
 for i in "${!ids[@]}"; do
   id="${ids[$i]}"
   path="$src/${files[$i]}"
@@ -216,38 +287,49 @@ for i in "${!ids[@]}"; do
     equivalent=$((equivalent + 1))
     continue
   fi
-  t0=$(date +%s)
-  n=$(occurrences "$path" "${texts[$i]}" 2> /dev/null || echo 0)
-  if [[ "$n" != 1 ]]; then
-    results+=("refused") details+=("text found $n times") times+=("")
-    refused=$((refused + 1))
-    echo "-- $id: refused (text found $n times in ${files[$i]})"
-    continue
-  fi
-  cp -p "$path" "$path.mutation-orig"
-  current_file="$path"
-  apply_mutant "$path" "${texts[$i]}" "${repls[$i]}"
-  if ! build "$logs/$id.build.log" "${targets[@]}"; then
-    result="build-failed"
-    detail="$(grep -m1 -E 'error:' "$logs/$id.build.log" | sed -E 's/^[^ ]*: error: //; s/\|/\\|/g' | cut -c1-100)"
+  key="$(verdict_key "$i")"
+  if [[ -z "${notes[$i]}" ]] && IFS=$'\x1f' read -r _ _ result detail seconds < <(grep -m1 "^$key"$'\x1f' "$verdicts"); then
+    reused=$((reused + 1))
+    echo "-- $id: $result ${detail:+($detail)} (recorded for this tree)"
   else
-    rc=0
-    timeout -k 10 "$limit" ctest "${ctest_args[@]}" > "$logs/$id.test.log" 2>&1 || rc=$?
-    if (( rc == 0 )); then
-      result="survived"
-      detail=""
-    elif (( rc == 124 || rc == 137 )); then
-      result="killed"
-      detail="timed out after ${limit}s"
-    else
-      result="killed"
-      detail="$(sed -n '/The following tests FAILED/,$p' "$logs/$id.test.log" | grep -E '^\s+[0-9]+ - ' |
-        sed -E 's/^\s+[0-9]+ - ([^ ]+).*/\1/' | head -3 | paste -sd ' ' -)"
-      nfail=$(grep -Eo '[0-9]+ tests failed' "$logs/$id.test.log" | grep -Eo '^[0-9]+' || echo "?")
-      detail="$nfail failed: $detail"
+    t0=$(date +%s)
+    n=$(occurrences "$path" "${texts[$i]}" 2> /dev/null || echo 0)
+    if [[ "$n" != 1 ]]; then
+      results+=("refused") details+=("text found $n times") times+=("")
+      refused=$((refused + 1))
+      echo "-- $id: refused (text found $n times in ${files[$i]})"
+      continue
     fi
+    cp -p "$path" "$path.mutation-orig"
+    current_file="$path"
+    apply_mutant "$path" "${texts[$i]}" "${repls[$i]}"
+    if run_stages "$id"; then
+      :
+    elif ! build "$logs/$id.build.log" "${targets[@]}"; then
+      result="build-failed"
+      detail="$(grep -m1 -E 'error:' "$logs/$id.build.log" | sed -E 's/^[^ ]*: error: //; s/\|/\\|/g' | cut -c1-100)"
+    else
+      rc=0
+      timeout -k 10 "$limit" ctest "${ctest_args[@]}" > "$logs/$id.test.log" 2>&1 || rc=$?
+      if (( rc == 0 )); then
+        result="survived"
+        detail=""
+      elif (( rc == 124 || rc == 137 )); then
+        result="killed"
+        detail="timed out after ${limit}s"
+      else
+        result="killed"
+        detail="$(sed -n '/The following tests FAILED/,$p' "$logs/$id.test.log" | grep -E '^\s+[0-9]+ - ' |
+          sed -E 's/^\s+[0-9]+ - ([^ ]+).*/\1/' | head -3 | paste -sd ' ' -)"
+        nfail=$(grep -Eo '[0-9]+ tests failed' "$logs/$id.test.log" | grep -Eo '^[0-9]+' || echo "?")
+        detail="$nfail failed: $detail"
+      fi
+    fi
+    restore
+    seconds=$(( $(date +%s) - t0 ))
+    [[ -z "${notes[$i]}" ]] && printf '%s\x1f%s\x1f%s\x1f%s\x1f%s\n' "$key" "$id" "$result" "$detail" "$seconds" >> "$verdicts"
+    echo "-- $id: $result ${detail:+($detail)} in ${seconds}s"
   fi
-  restore
   if [[ -n "${notes[$i]}" ]]; then  # run on request (-e): reported, never scored
     [[ "$result" == killed ]] && detail="marked equivalent, yet killed: $detail"
     result="$result (marked equivalent)"
@@ -259,8 +341,7 @@ for i in "${!ids[@]}"; do
       build-failed) build_failed=$((build_failed + 1)) ;;
     esac
   fi
-  results+=("$result") details+=("$detail") times+=("$(( $(date +%s) - t0 ))")
-  echo "-- $id: $result ${detail:+($detail)} in ${times[-1]}s"
+  results+=("$result") details+=("$detail") times+=("$seconds")
 done
 
 # ---- report --------------------------------------------------------------------------------------
@@ -278,7 +359,8 @@ report() {
   else
     echo "Score: no non-equivalent mutant was run."
   fi
-  echo "Survived $survived, build-failed $build_failed, refused $refused, equivalent $equivalent;" \
+  echo "Survived $survived, build-failed $build_failed, refused $refused, equivalent $equivalent" \
+    "($reused verdicts recorded for this tree reused);" \
     "tests: ctest ${select_args[*]:-(all)} ($tests_run tests, baseline ${baseline_s}s); logs in $logs."
 }
 echo

@@ -263,11 +263,12 @@ run_stages() {  # id
   return 1
 }
 
-# Verdicts recorded for this tree and this test selection: every copied file hashed but the
-# prose (*.md, except docs/scenarios.md, which a test reads) and this script and its list.
+# Verdicts recorded for this tree and this test selection: every copied file hashed but those
+# the build here never reads (scripts/, .ci/, python/: the module is off) and the prose (*.md,
+# except docs/scenarios.md, which a test reads).
 verdicts="$scratch/verdicts.tsv"
 tree_key="$(git -C "$root" ls-files -z --cached --others --exclude-standard |
-  grep -zvP '^scripts/(mutation\.sh|mutants\.tsv)$|^(?!docs/scenarios\.md$).*\.md$' |
+  grep -zvP '^(scripts|\.ci|python)/|^(?!docs/scenarios\.md$).*\.md$' |
   (cd "$src" && xargs -0 sha1sum 2> /dev/null) | sha1sum | cut -c1-16)"
 (( forget )) && rm -f "$verdicts"
 touch "$verdicts"

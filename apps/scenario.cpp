@@ -342,11 +342,6 @@ E read_enum(const Reader& r, std::string_view key) {
   r.fail(key, "expected " + expected + ", got \"" + text + "\"");
 }
 
-template <class E, class = void>
-inline constexpr bool kHasEnumNames = false;
-template <class E>
-inline constexpr bool kHasEnumNames<E, std::void_t<decltype(enum_names(E{}))>> = true;
-
 // Reads the fields of `c` in `section` as its field table names them: a required one must be
 // there, an optional one left out keeps the value `c` has.
 template <class Config>

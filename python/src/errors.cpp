@@ -2,6 +2,10 @@
 
 #include "bindings.hpp"
 
+#include <cctype>
+#include <cstddef>
+#include <string>
+
 namespace py = pybind11;
 
 namespace gyro::python {
@@ -30,20 +34,14 @@ void raise_if_failed(Status s, const std::string& what, bool ignored_ok) {
 }
 
 void bind_errors(py::module_& m) {
-  py::enum_<Status>(m, "Status", "Status values of every fallible call (gyro/status.hpp).")
-      .value("OK", Status::kOk)
-      .value("NON_FINITE_INPUT", Status::kNonFiniteInput)
-      .value("NON_POSITIVE_INERTIA", Status::kNonPositiveInertia)
-      .value("NEGATIVE_FRICTION", Status::kNegativeFriction)
-      .value("NEGATIVE_ANGULAR_MOMENTUM", Status::kNegativeAngularMomentum)
-      .value("NON_POSITIVE_STEP", Status::kNonPositiveStep)
-      .value("NO_STEADY_STATE", Status::kNoSteadyState)
-      .value("OUT_OF_RANGE", Status::kOutOfRange)
-      .value("NUMERICAL_OVERFLOW", Status::kNumericalOverflow)
-      .value("NOT_CONFIGURED", Status::kNotConfigured)
-      .value("INVALID_ROTATION", Status::kInvalidRotation)
-      .value("WRONG_MODE", Status::kWrongMode)
-      .value("INPUT_IGNORED", Status::kInputIgnored);
+  // The names beside the enum (gyro/status.hpp), in Python's capitals: NON_FINITE_INPUT.
+  py::enum_<Status> status(m, "Status", "Status values of every fallible call (gyro/status.hpp).");
+  constexpr auto names = enum_names(Status{});
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    std::string name(names[i]);
+    for (char& ch : name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    status.value(name.c_str(), static_cast<Status>(i));
+  }
   m.def(
       "status_text", [](Status s) { return std::string(to_string(s)); }, py::arg("status"),
       "The description of a Status (\"non-finite input\", ...).");

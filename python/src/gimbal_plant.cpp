@@ -21,38 +21,6 @@ namespace gyro::python {
 
 namespace {
 
-template <typename T>
-const FieldTable<GimbalPlantConfig<T>>& plant_fields() {
-  using C = GimbalPlantConfig<T>;
-  static const FieldTable<C> table = [] {
-    FieldTable<C> t;
-    t.number("spin_inertia", &C::spin_inertia)
-        .number("rotor_transverse_inertia", &C::rotor_transverse_inertia)
-        .vector("inner_gimbal_inertia", &C::inner_gimbal_inertia)
-        .vector("outer_gimbal_inertia", &C::outer_gimbal_inertia)
-        .number("inner_friction", &C::inner_friction)
-        .number("outer_friction", &C::outer_friction)
-        .number("inner_coulomb_torque", &C::inner_coulomb_torque)
-        .number("outer_coulomb_torque", &C::outer_coulomb_torque)
-        .number("coulomb_rate_scale_rad_s", &C::coulomb_rate_scale_rad_s)
-        .choice("spin_drive", &C::spin_drive, {{"motor", SpinDrive::kMotor}, {"free", SpinDrive::kFree}})
-        .number("max_spin_hz", &C::max_spin_hz)
-        .number("motor_torque_limit", &C::motor_torque_limit)
-        .number("spin_servo_bandwidth_rad_s", &C::spin_servo_bandwidth_rad_s)
-        .number("spin_down_time_s", &C::spin_down_time_s)
-        .number("mass_unbalance", &C::mass_unbalance)
-        .number("stop_cone_rad", &C::stop_cone_rad)
-        .number("stop_restitution", &C::stop_restitution)
-        .choice("torque_axes", &C::torque_axes, {{"gimbal", TorqueAxes::kGimbal}, {"gyro", TorqueAxes::kGyro}})
-        .number("max_body_rate_rad_s", &C::max_body_rate_rad_s)
-        .number("max_torque", &C::max_torque)
-        .number("max_specific_force", &C::max_specific_force)
-        .number("max_substep_phase_rad", &C::max_substep_phase_rad);
-    return t;
-  }();
-  return table;
-}
-
 // The plant and the body's motion at its last tick (the start of the next step).
 template <typename T>
 struct PlantHandle {
@@ -63,7 +31,7 @@ struct PlantHandle {
 template <typename T>
 void configure_plant(PlantHandle<T>& h, T tick_s, const py::object& config, const py::kwargs& fields) {
   GimbalPlantConfig<T> c{};
-  plant_fields<T>().apply(c, merged_config(config, fields, "GimbalPlant"));
+  apply_fields(c, merged_config(config, fields, "GimbalPlant"));
   raise_if_refused(h.plant.configure(c, tick_s), "GimbalPlant.configure");
 }
 
@@ -161,12 +129,12 @@ void bind_plant(py::module_& m, const char* name, const char* doc) {
       .def_property_readonly("tick_s", [](const H& h) { return h.plant.tick_s(); }, "The tick (s).")
       .def_property_readonly("started", [](const H& h) { return h.plant.started(); }, "Whether start() has run.")
       .def_property_readonly(
-          "config", [](const H& h) { return plant_fields<T>().to_dict(h.plant.config()); },
+          "config", [](const H& h) { return fields_to_dict(h.plant.config()); },
           "The configuration as a dict.")
       .def_property_readonly_static(
           "dtype", [](const py::object&) { return py::dtype::of<T>(); }, "The scalar type: float64 or float32.")
       .def_property_readonly_static(
-          "config_fields", [](const py::object&) { return plant_fields<T>().names(); }, "The configuration's keys.");
+          "config_fields", [](const py::object&) { return field_names<GimbalPlantConfig<T>>(); }, "The configuration's keys.");
 }
 
 }  // namespace

@@ -22,48 +22,9 @@ namespace gyro::python {
 namespace {
 
 template <typename T>
-FieldTable<AxisErrorSources<T>> axis_error_fields() {
-  using A = AxisErrorSources<T>;
-  FieldTable<A> t;
-  t.number("static_drift_rad_s", &A::static_drift_rad_s)
-      .number("in_plane_erection_1_s", &A::in_plane_erection_1_s)
-      .number("cross_plane_erection_1_s", &A::cross_plane_erection_1_s)
-      .number("g_sensitive_drift_rad_s", &A::g_sensitive_drift_rad_s)
-      .number("torquer_cross_coupling", &A::torquer_cross_coupling)
-      .number("coulomb_friction_rad_s", &A::coulomb_friction_rad_s);
-  return t;
-}
-
-template <typename T>
-const FieldTable<GyroModelConfig<T>>& model_fields() {
-  using C = GyroModelConfig<T>;
-  static const FieldTable<C> table = [] {
-    FieldTable<GyroErrorSources<T>> errors;
-    errors.nested("pitch", &GyroErrorSources<T>::pitch, axis_error_fields<T>())
-        .nested("yaw", &GyroErrorSources<T>::yaw, axis_error_fields<T>());
-    FieldTable<C> t;
-    t.number("pitch_inertia", &C::pitch_inertia)
-        .number("yaw_inertia", &C::yaw_inertia)
-        .number("spin_inertia", &C::spin_inertia)
-        .number("friction", &C::friction)
-        .number("gimbal_cone_limit_rad", &C::gimbal_cone_limit_rad)
-        .number("pitch_gimbal_limit_rad", &C::pitch_gimbal_limit_rad)
-        .number("yaw_gimbal_limit_rad", &C::yaw_gimbal_limit_rad)
-        .number("max_pitch_rate_rad_s", &C::max_pitch_rate_rad_s)
-        .number("max_yaw_rate_rad_s", &C::max_yaw_rate_rad_s)
-        .number("small_angle_limit_rad", &C::small_angle_limit_rad)
-        .number("gravity", &C::gravity)
-        .nested("errors", &C::errors, std::move(errors))
-        .choice("torquer_axes", &C::torquer_axes, {{"gyro", TorquerAxes::kGyro}, {"gimbal", TorquerAxes::kGimbal}});
-    return t;
-  }();
-  return table;
-}
-
-template <typename T>
 void configure_model(GyroModel<T>& g, const py::object& config, const py::kwargs& fields) {
   GyroModelConfig<T> c{};
-  model_fields<T>().apply(c, merged_config(config, fields, "GyroModel"));
+  apply_fields(c, merged_config(config, fields, "GyroModel"));
   raise_if_refused(g.configure(c), "GyroModel.configure");
 }
 
@@ -188,12 +149,12 @@ void bind_model(py::module_& m, const char* name, const char* doc) {
       .def_property_readonly("small_angle_exceeded", &G::small_angle_exceeded, "Flag bit 1.")
       .def_property_readonly("uncaged", &G::uncaged, "Whether uncage() has run since configure().")
       .def_property_readonly(
-          "config", [](const G& g) { return model_fields<T>().to_dict(g.config()); },
+          "config", [](const G& g) { return fields_to_dict(g.config()); },
           "The configuration as a dict (the constructor's keys).")
       .def_property_readonly_static(
           "dtype", [](const py::object&) { return py::dtype::of<T>(); }, "The scalar type: float64 or float32.")
       .def_property_readonly_static(
-          "config_fields", [](const py::object&) { return model_fields<T>().names(); }, "The configuration's keys.")
+          "config_fields", [](const py::object&) { return field_names<GyroModelConfig<T>>(); }, "The configuration's keys.")
       .def("__repr__", [who](const G& g) {
         return who + "(uncaged=" + (g.uncaged() ? "True" : "False") + ")";
       });

@@ -1,163 +1,181 @@
 // A configuration struct's fields by name, for configuring from keyword arguments or a dict
-// and for reading the configuration back as a dict. An unknown key or a value of the wrong
-// kind is a gyro.ConfigError naming the field (the values themselves are checked by the
-// C++ configure(), whose refusal names the field too).
+// and for reading the configuration back as a dict: the struct's own field table
+// (gyro/config_fields.hpp) walked, so a field added to the table is a keyword here too.
+// An unknown key or a value of the wrong kind is a gyro.ConfigError naming the field (the
+// values themselves are checked by the C++ configure(), whose refusal names the field too).
 #pragma once
 
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Core>
-#include <functional>
-#include <memory>
+#include <cstdint>
 #include <string>
-#include <utility>
+#include <type_traits>
 #include <vector>
 
 #include "errors.hpp"
+#include "gyro/config_fields.hpp"
 #include "scenario.hpp"  // sil::edit_distance
 
 namespace gyro::python {
 
 namespace py = pybind11;
 
-template <typename C>
-class FieldTable {
- public:
-  struct Field {
-    std::string name;
-    std::function<void(C&, py::handle, const std::string&)> set;  // path: the field's name for messages
-    std::function<py::object(const C&)> get;
-  };
+namespace keyword_detail {
 
-  // A number (float or double member).
-  template <typename T>
-  FieldTable& number(const char* name, T C::*member) {
-    fields_.push_back({name, [member](C& c, py::handle v, const std::string& path) { c.*member = to_number<T>(v, path); },
-                       [member](const C& c) -> py::object { return py::float_(static_cast<double>(c.*member)); }});
-    return *this;
+template <typename M>
+M to_number(py::handle v, const std::string& path) {
+  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v)) raise_config_error(path, "expected a number");
+  const double d = PyFloat_AsDouble(v.ptr());
+  if (PyErr_Occurred() != nullptr) {
+    PyErr_Clear();
+    raise_config_error(path, "expected a number");
   }
-  // A boolean.
-  FieldTable& boolean(const char* name, bool C::*member) {
-    fields_.push_back({name,
-                       [member](C& c, py::handle v, const std::string& path) {
-                         if (!py::isinstance<py::bool_>(v)) raise_config_error(path, "expected true or false");
-                         c.*member = v.cast<bool>();
-                       },
-                       [member](const C& c) -> py::object { return py::bool_(c.*member); }});
-    return *this;
-  }
-  // A fixed-size vector (Eigen) given as a sequence of numbers.
-  template <typename T, int N>
-  FieldTable& vector(const char* name, Eigen::Matrix<T, N, 1> C::*member) {
-    fields_.push_back({name,
-                       [member](C& c, py::handle v, const std::string& path) {
-                         if (!py::isinstance<py::sequence>(v) || py::isinstance<py::str>(v) || py::len(v) != N) {
-                           raise_config_error(path, "expected " + std::to_string(N) + " numbers");
-                         }
-                         const py::sequence s = py::reinterpret_borrow<py::sequence>(v);
-                         for (int i = 0; i < N; ++i) {
-                           (c.*member)(i) = to_number<T>(s[static_cast<std::size_t>(i)], path + "[" + std::to_string(i) + "]");
-                         }
-                       },
-                       [member](const C& c) -> py::object {
-                         py::list l;
-                         for (int i = 0; i < N; ++i) l.append(static_cast<double>((c.*member)(i)));
-                         return l;
-                       }});
-    return *this;
-  }
-  // An enumeration given by name.
-  template <typename E>
-  FieldTable& choice(const char* name, E C::*member, std::vector<std::pair<std::string, E>> names) {
-    fields_.push_back({name,
-                       [member, names](C& c, py::handle v, const std::string& path) {
-                         std::string all;
-                         if (py::isinstance<py::str>(v)) {
-                           const std::string s = v.cast<std::string>();
-                           for (const auto& [n, e] : names) {
-                             if (n == s) {
-                               c.*member = e;
-                               return;
-                             }
-                           }
-                         }
-                         for (const auto& [n, e] : names) all += (all.empty() ? "" : ", ") + n;
-                         raise_config_error(path, "expected one of " + all);
-                       },
-                       [member, names](const C& c) -> py::object {
-                         for (const auto& [n, e] : names) {
-                           if (c.*member == e) return py::str(n);
-                         }
-                         return py::none();
-                       }});
-    return *this;
-  }
-  // A nested struct given as a dict.
-  template <typename S>
-  FieldTable& nested(const char* name, S C::*member, FieldTable<S> table) {
-    auto shared = std::make_shared<FieldTable<S>>(std::move(table));
-    fields_.push_back({name,
-                       [member, shared](C& c, py::handle v, const std::string& path) {
-                         if (!py::isinstance<py::dict>(v)) raise_config_error(path, "expected a dict");
-                         shared->apply(c.*member, py::reinterpret_borrow<py::dict>(v), path + ".");
-                       },
-                       [member, shared](const C& c) -> py::object { return shared->to_dict(c.*member); }});
-    return *this;
-  }
+  return static_cast<M>(d);
+}
 
-  // Sets every key of `values` on `c`; `prefix` is prepended to the field names in messages.
-  void apply(C& c, const py::dict& values, const std::string& prefix = "") const {
-    for (const auto& [key, value] : values) {
-      const std::string k = py::str(key).cast<std::string>();
-      const Field* f = find(k);
-      if (f == nullptr) raise_config_error(prefix + k, "unknown field" + suggestion(k));
-      f->set(c, value, prefix + k);
-    }
+template <typename M>
+M to_count(py::handle v, const std::string& path) {
+  if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v)) raise_config_error(path, "expected a whole number");
+  const long long n = v.cast<long long>();
+  if (n < 0 || static_cast<unsigned long long>(n) > static_cast<unsigned long long>(~M(0))) {
+    raise_config_error(path, "expected a whole number from 0 to " + std::to_string(~M(0)));
   }
-  [[nodiscard]] py::dict to_dict(const C& c) const {
-    py::dict d;
-    for (const Field& f : fields_) d[py::str(f.name)] = f.get(c);
-    return d;
-  }
-  [[nodiscard]] std::vector<std::string> names() const {
-    std::vector<std::string> n;
-    for (const Field& f : fields_) n.push_back(f.name);
-    return n;
-  }
+  return static_cast<M>(n);
+}
 
- private:
-  template <typename T>
-  static T to_number(py::handle v, const std::string& path) {
-    if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v)) raise_config_error(path, "expected a number");
-    const double d = PyFloat_AsDouble(v.ptr());
-    if (PyErr_Occurred() != nullptr) {
-      PyErr_Clear();
-      raise_config_error(path, "expected a number");
-    }
-    return static_cast<T>(d);
-  }
-  [[nodiscard]] const Field* find(const std::string& k) const {
-    for (const Field& f : fields_) {
-      if (f.name == k) return &f;
-    }
-    return nullptr;
-  }
-  // " (did you mean x?)" for the closest known name sharing most of its characters.
-  [[nodiscard]] std::string suggestion(const std::string& k) const {
-    std::string best;
-    std::size_t best_d = k.size() / 3 + 1;
-    for (const Field& f : fields_) {
-      const std::size_t d = sil::edit_distance(k, f.name);
-      if (d <= best_d) {
-        best_d = d;
-        best = f.name;
+template <class Config>
+void apply(Config& c, const py::dict& values, const std::string& prefix);
+template <class Config>
+py::dict to_dict(const Config& c);
+
+// One member set from a Python value, by the member's type.
+template <typename M>
+void set_member(M& m, py::handle v, const std::string& path) {
+  if constexpr (std::is_same_v<M, bool>) {
+    if (!py::isinstance<py::bool_>(v)) raise_config_error(path, "expected true or false");
+    m = v.cast<bool>();
+  } else if constexpr (std::is_floating_point_v<M>) {
+    m = to_number<M>(v, path);
+  } else if constexpr (std::is_integral_v<M>) {
+    m = to_count<M>(v, path);
+  } else if constexpr (kHasEnumNames<M>) {
+    constexpr auto names = enum_names(M{});
+    if (py::isinstance<py::str>(v)) {
+      const std::string s = v.cast<std::string>();
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        if (s == names[i]) {
+          m = static_cast<M>(i);
+          return;
+        }
       }
     }
-    return best.empty() ? "" : " (did you mean " + best + "?)";
+    std::string all;
+    for (const char* n : names) all += (all.empty() ? "" : ", ") + std::string(n);
+    raise_config_error(path, "expected one of " + all);
+  } else if constexpr (kHasFieldTable<M>) {
+    if (!py::isinstance<py::dict>(v)) raise_config_error(path, "expected a dict");
+    apply(m, py::reinterpret_borrow<py::dict>(v), path + ".");
+  } else {
+    static_assert(std::is_base_of_v<Eigen::EigenBase<M>, M>, "a field type the keywords cannot take");
+    constexpr int n = M::RowsAtCompileTime;
+    if (!py::isinstance<py::sequence>(v) || py::isinstance<py::str>(v) || py::len(v) != static_cast<std::size_t>(n)) {
+      raise_config_error(path, "expected " + std::to_string(n) + " numbers");
+    }
+    const py::sequence s = py::reinterpret_borrow<py::sequence>(v);
+    for (int i = 0; i < n; ++i) {
+      m(i) = to_number<typename M::Scalar>(s[static_cast<std::size_t>(i)], path + "[" + std::to_string(i) + "]");
+    }
   }
+}
 
-  std::vector<Field> fields_;
-};
+// One member as a Python value.
+template <typename M>
+py::object get_member(const M& m) {
+  if constexpr (std::is_same_v<M, bool>) {
+    return py::bool_(m);
+  } else if constexpr (std::is_floating_point_v<M>) {
+    return py::float_(static_cast<double>(m));
+  } else if constexpr (std::is_integral_v<M>) {
+    return py::int_(m);
+  } else if constexpr (kHasEnumNames<M>) {
+    constexpr auto names = enum_names(M{});
+    const auto i = static_cast<std::size_t>(m);
+    return i < names.size() ? py::object(py::str(names[i])) : py::object(py::none());
+  } else if constexpr (kHasFieldTable<M>) {
+    return to_dict(m);
+  } else {
+    py::list l;
+    for (int i = 0; i < M::RowsAtCompileTime; ++i) l.append(static_cast<double>(m(i)));
+    return l;
+  }
+}
+
+template <class Config>
+std::vector<std::string> names() {
+  std::vector<std::string> n;
+  const Config c{};
+  visit_fields([&n](const Field& f, const auto&) { n.emplace_back(f.name); }, c);
+  return n;
+}
+
+// " (did you mean x?)" for the closest known name sharing most of its characters.
+inline std::string suggestion(const std::string& k, const std::vector<std::string>& known) {
+  std::string best;
+  std::size_t best_d = k.size() / 3 + 1;
+  for (const std::string& n : known) {
+    const std::size_t d = sil::edit_distance(k, n);
+    if (d <= best_d) {
+      best_d = d;
+      best = n;
+    }
+  }
+  return best.empty() ? "" : " (did you mean " + best + "?)";
+}
+
+template <class Config>
+void apply(Config& c, const py::dict& values, const std::string& prefix) {
+  for (const auto& [key, value] : values) {
+    const std::string k = py::str(key).cast<std::string>();
+    bool found = false;
+    visit_fields(
+        [&](const Field& f, auto& member) {
+          if (found || k != f.name) return;
+          found = true;
+          set_member(member, value, prefix + k);
+        },
+        c);
+    if (!found) raise_config_error(prefix + k, "unknown field" + suggestion(k, names<Config>()));
+  }
+}
+
+template <class Config>
+py::dict to_dict(const Config& c) {
+  py::dict d;
+  visit_fields([&d](const Field& f, const auto& member) { d[py::str(f.name)] = get_member(member); }, c);
+  return d;
+}
+
+}  // namespace keyword_detail
+
+// Sets every key of `values` on `c` (its field table's names; nested structs as dicts);
+// `prefix` is prepended to the field names in messages.
+template <class Config>
+void apply_fields(Config& c, const py::dict& values, const std::string& prefix = "") {
+  keyword_detail::apply(c, values, prefix);
+}
+
+// `c` as a dict of its field table's names (enumerations by name, nested structs as dicts).
+template <class Config>
+[[nodiscard]] py::dict fields_to_dict(const Config& c) {
+  return keyword_detail::to_dict(c);
+}
+
+// The names of Config's fields, in its table's order.
+template <class Config>
+[[nodiscard]] std::vector<std::string> field_names() {
+  return keyword_detail::names<Config>();
+}
 
 // The keyword arguments merged over the dict `config` (None: empty).
 inline py::dict merged_config(const py::object& config, const py::kwargs& fields, const char* who) {

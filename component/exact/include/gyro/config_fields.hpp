@@ -56,6 +56,13 @@ struct FieldTable {
 template <class Config>
 inline constexpr bool kHasFieldTable = FieldTable<std::remove_const_t<Config>>::kDefined;
 
+// An enumeration whose names (as files and bindings spell them, in enumerator order) are given
+// by an enum_names(E) beside it.
+template <class E, class = void>
+inline constexpr bool kHasEnumNames = false;
+template <class E>
+inline constexpr bool kHasEnumNames<E, std::void_t<decltype(enum_names(E{}))>> = true;
+
 // Visits the fields of `c` (and, in lockstep, of `more`, configurations of the same struct
 // in another scalar type): v(field, c.member, more.member...).
 template <class Visit, class Config, class... More>

@@ -2,6 +2,8 @@
 // but Status::kOk or Status::kInputIgnored has left its object's state exactly as it was.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace gyro {
@@ -21,6 +23,15 @@ enum class Status : std::uint8_t {
   kWrongMode,               // not allowed in the current mode (e.g. configure while active)
   kInputIgnored,            // the call ran, without some unusable input fields (flags say which)
 };
+
+// Each status's name (as the Python binding and logs spell it), in enumerator order.
+[[nodiscard]] constexpr std::array<const char*, 13> enum_names(Status /*tag*/) noexcept {
+  return {"ok", "non_finite_input", "non_positive_inertia", "negative_friction", "negative_angular_momentum",
+          "non_positive_step", "no_steady_state", "out_of_range", "numerical_overflow", "not_configured",
+          "invalid_rotation", "wrong_mode", "input_ignored"};
+}
+static_assert(enum_names(Status{}).size() == static_cast<std::size_t>(Status::kInputIgnored) + 1,
+              "a name for every Status");
 
 [[nodiscard]] constexpr const char* to_string(Status s) noexcept {
   switch (s) {

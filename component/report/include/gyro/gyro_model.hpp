@@ -8,6 +8,7 @@
 // docs/seed-errata.md. Allocation-free, exception-free; float or double.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -26,6 +27,7 @@ namespace gyro {
 //            the gimbal axes, friction on the gimbal rates relative to the body. Each step
 //            holds the resolved torque constant; the exact step itself is the report's.
 enum class TorquerAxes : std::uint8_t { kGyro = 0, kGimbal };
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(TorquerAxes /*tag*/) noexcept { return {"gyro", "gimbal"}; }
 
 template <typename T>
 struct GyroModelConfig {

@@ -38,6 +38,7 @@
 
 #include "fuzz_support.hpp"
 #include "gyro/gyro_component.hpp"
+#include "gyro/seeker_example.hpp"
 
 namespace {
 
@@ -82,29 +83,11 @@ class ScriptedPort final : public gyro::GyroPort<T> {
   }
 };
 
-// A small SI seeker gyro at 2 kHz whose fault persistences and settling are short enough
-// for a few hundred ticks to reach every mode.
+// The seeker example (gyro/seeker_example.hpp) with fault persistences and settling short
+// enough for a few hundred ticks to reach every mode.
 template <typename T>
 gyro::GyroComponentConfig<T> nominal_config() {
-  gyro::GyroComponentConfig<T> c;
-  c.tick_s = T(5e-4);
-  c.pitch_inertia = T(2e-5);
-  c.yaw_inertia = T(2e-5);
-  c.spin_inertia = T(3e-5);
-  c.friction = T(4e-4);
-  c.nominal_spin_hz = T(400);
-  c.min_spin_hz = T(300);
-  c.max_pitch_rate_rad_s = T(1);
-  c.max_yaw_rate_rad_s = T(1);
-  c.max_torque = T(0.1);
-  c.cage_gain_1_s = T(20);
-  c.gimbal_cone_limit_rad = T(0.5);
-  c.gimbal_stop_margin_rad = T(0.05);
-  c.small_angle_limit_rad = T(0.01);
-  c.pickoff_range_rad = T(0.6);
-  c.max_pickoff_step_rad = T(5e-3);
-  c.estimator_gain = T(0.005);
-  c.residual_limit_rad = T(2e-3);
+  gyro::GyroComponentConfig<T> c = gyro::SeekerExample<T>::component();
   c.residual_persistence_ticks = 8;
   c.invalid_persistence_ticks = 5;
   c.spin_low_persistence_ticks = 5;

@@ -10,21 +10,11 @@
 namespace gyro {
 
 // Per-axis amplitude (rad) of the nutation that the rates `rate_rad_s` excite under a
-// constant `torque`: an upper bound, for all t >= 0, of the angle's transient
-// exp(A t) y with y = A^-1 (w - w_ss). With exp(A t) = c(t) I + s(t) N, the transient of
-// axis i is c(t) y_i + s(t) (N y)_i, and two bounds hold:
-//   underdamped  |c| <= e^-alpha t, |s| <= e^-alpha t / beta:   hypot(y_i, (N y)_i / beta),
-//                the report's eq 15 amplitude sqrt((k1^2 + k2^2)/(alpha^2 + beta^2));
-//   every regime |c| <= 1, |s| <= S:   |y_i| + S |(N y)_i|, with S = 1/max(beta, e*alpha)
-//                (the bound of t exp(-alpha t)), or 1/(e*(alpha - gamma)) when overdamped.
-// The amplitude is the smaller of the two. For beta >= e*alpha (the lightly damped gyros the
-// report treats) that is the report's formula; towards critical damping, where the report's
-// divides by zero, the second takes over, finite and continuous through critical damping and
-// into overdamping. (Capping 1/beta inside the hypot instead is not a bound: near critical
-// the transient exceeded it by up to 7.6%.) Without spin and friction (f = H = 0) there is
-// no transient to nutate: the amplitude is 0.
-// What the amplitude needs from the parameters, computed once per rotor (per H): per step it
-// is then two 2x2 products and a few scalar operations.
+// constant `torque`: an upper bound, for all t >= 0, of the angle's transient. The smaller of
+// the report's eq 15 amplitude (underdamped) and a bound that holds in every regime, so it
+// stays finite through critical damping and into overdamping; 0 when f = H = 0. Derivation:
+// docs/exact-step.md. What it needs from the parameters is computed once per rotor (per H):
+// per step two 2x2 products and a few scalar operations.
 template <typename T>
 struct NutationMap {
   Matrix2<T> steady_from_torque{Matrix2<T>::Zero()};  // w_ss = P T (eq 11: k5, k6)

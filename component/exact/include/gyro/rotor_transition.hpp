@@ -1,26 +1,8 @@
 // The exact discretisation of the rotor over one step with constant torque: the matrix
-// exponential of eqs 1a/1b plus theta' = w1, psi' = w2, in closed form for every regime.
-//
-// With A the 2x2 rate matrix and J = diag(J1, J2), over a step dt:
-//   w(dt)     = E0 w0 + E1 J^-1 T,          E0 = exp(A dt)
-//   angle(dt) = angle0 + E1 w0 + E2 J^-1 T, E1 = int_0^dt exp(A s) ds,
-//                                           E2 = int_0^dt (dt - s) exp(A s) ds.
-// With A = N - alpha I, N^2 = -beta^2 I, and K = N + alpha I (whose diagonal is f/J2, f/J1):
-//   exp(A dt)  = M0 I + D0 (N dt),
-//   phi1(A dt) = D0 I + D1 (K dt),   E1 = dt phi1(A dt),
-//   phi2(A dt) = D1 I + D2 (K dt),   E2 = dt^2 phi2(A dt),
-// where g(A dt) = M_k I + D_k (N dt) for g = exp, phi1, phi2 and M_{k+1} - a D_{k+1} = D_k
-// (from phi_{k+1}(X) X = phi_k(X) - I/k!). Writing E1 and E2 on K rather than N keeps their
-// diagonals free of the cancellation alpha - |d| = f/J_max: with J2 = J1/100 and f near or
-// above critical, M_k - D_k |d| dt lost a factor up to 50 of accuracy (1.7e-5 in float).
-// The scalar functions of the two eigenvalues z = -a +- sqrt(-b) of A dt (a = alpha dt,
-// b = beta^2 dt^2) are evaluated:
-//   |z| <= 1              a Taylor series of fixed length (no division at all);
-//   overdamped, separated eigenvalue-by-eigenvalue (real, distinct: no cancellation);
-//   otherwise             closed form, phi1 = (At)^-1 (exp(At) - I), phi2 likewise, where
-//                         |At| > 1 keeps the subtraction and the inverse well conditioned.
-// Nothing divides by beta or H, so critical damping, overdamping, H = 0 and f = 0 are
-// ordinary cases, and beta*dt of 1e5 rad costs the same as 1e-3.
+// exponential of eqs 1a/1b plus theta' = w1, psi' = w2, in closed form for every regime
+// (exp, phi1 and phi2 of A dt written on N and K = N + alpha I; a fixed-length series for
+// |z| <= 1, eigenvalue by eigenvalue when overdamped, the closed form otherwise). Nothing
+// divides by beta or H. The derivation and why each choice: docs/exact-step.md.
 #pragma once
 
 #include <array>

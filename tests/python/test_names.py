@@ -18,12 +18,12 @@ def stub_members(source_dir, cls):
 def test_given_the_status_enum_then_its_values_count_up_in_the_stubs_order(source_dir):
     names = stub_members(source_dir, "Status")
     assert list(gyro.Status.__members__) == names
-    assert [int(gyro.Status[n]) for n in names] == list(range(len(names)))
-    assert gyro.Status.NUMERICAL_OVERFLOW == 8  # the C++ enumerator's value
+    assert [int(gyro.Status.__members__[n]) for n in names] == list(range(len(names)))
+    assert int(gyro.Status.NUMERICAL_OVERFLOW) == 8  # the C++ enumerator's value
 
 
 def test_given_every_status_then_each_has_its_own_description():
-    texts = [gyro.status_text(s) for s in gyro.Status]
+    texts = [gyro.status_text(s) for s in gyro.Status.__members__.values()]
     assert len(set(texts)) == len(texts) and "unknown status" not in texts
     assert gyro.status_text(gyro.Status.NON_FINITE_INPUT) == "non-finite input"
 

@@ -3,14 +3,15 @@
 # component/ changes? Each mutant of the list (scripts/mutants.tsv: file, exact text,
 # replacement, meaning) is applied alone to a copy of the tree, the test targets are rebuilt
 # incrementally, and the mutant is killed (a test failed or timed out), survived (every test
-# passed) or build-failed. The GoogleTest executables are built (as many at once as jobs) and run first,
-# the one that killed the last mutant first, and the first failure kills the mutant (most
-# mutants cost one test executable's build, not the suite's); a mutant they all pass gets the
-# whole build and ctest before it is called survived. A mutant judged on the same tree (the
-# copied sources hashed) is not run again: an interrupted run resumes where it stopped. Prints a Markdown table and the score, killed over
-# the non-equivalent mutants that built. Your checkout is never modified: the copy lives in
-# the scratch directory (build/mutation by default), kept between runs so that they are
-# incremental. On demand only (not in CI): a mutant costs a rebuild plus a ctest run.
+# passed) or build-failed. The GoogleTest executables are built (as many at once as jobs)
+# and run first, the one that killed the last mutant first, and the first failure kills the
+# mutant: most mutants cost one test executable's build, not the suite's. A mutant they all
+# pass gets the whole build and ctest before it is called survived. A mutant judged on the
+# same tree (the copied sources hashed) is not run again: an interrupted run resumes where it
+# stopped. Prints a Markdown table and the score, killed over the non-equivalent mutants that
+# built. Your checkout is never modified: the copy lives in the scratch directory
+# (build/mutation by default), kept between runs so that they are incremental. On demand
+# only (not in CI).
 #
 #   scripts/mutation.sh                        # every mutant, the whole host suite (hours)
 #   scripts/mutation.sh -R '^Component' -m '^tick-'   # the tick mutants, Component* tests

@@ -3,14 +3,15 @@
 # component/ changes? Each mutant of the list (scripts/mutants.tsv: file, exact text,
 # replacement, meaning) is applied alone to a copy of the tree, the test targets are rebuilt
 # incrementally, and the mutant is killed (a test failed or timed out), survived (every test
-# passed) or build-failed. The GoogleTest executables are built and run one at a time first,
-# the one that killed the last mutant first, and the first failure kills the mutant (most
-# mutants cost one test executable's build, not the suite's); a mutant they all pass gets the
-# whole build and ctest before it is called survived. A mutant judged on the same tree (the
-# copied sources hashed) is not run again: an interrupted run resumes where it stopped. Prints a Markdown table and the score, killed over
-# the non-equivalent mutants that built. Your checkout is never modified: the copy lives in
-# the scratch directory (build/mutation by default), kept between runs so that they are
-# incremental. On demand only (not in CI): a mutant costs a rebuild plus a ctest run.
+# passed) or build-failed. The GoogleTest executables are built (as many at once as jobs)
+# and run first, the one that killed the last mutant first, and the first failure kills the
+# mutant: most mutants cost one test executable's build, not the suite's. A mutant they all
+# pass gets the whole build and ctest before it is called survived. A mutant judged on the
+# same tree (the copied sources hashed) is not run again: an interrupted run resumes where it
+# stopped. Prints a Markdown table and the score, killed over the non-equivalent mutants that
+# built. Your checkout is never modified: the copy lives in the scratch directory
+# (build/mutation by default), kept between runs so that they are incremental. On demand
+# only (not in CI).
 #
 #   scripts/mutation.sh                        # every mutant, the whole host suite (hours)
 #   scripts/mutation.sh -R '^Component' -m '^tick-'   # the tick mutants, Component* tests
@@ -230,35 +231,46 @@ for t in json.load(sys.stdin).get("tests", []):
     groups.setdefault((exe, wd), []).append(filt[0])
 for (exe, wd), names in sorted(groups.items()):
     print("\t".join([exe, wd, ":".join(names)]))' "$bld")
-echo "   ${#stages[@]} test executables run one at a time before the whole suite"
+echo "   ${#stages[@]} test executables run before the whole suite, the last killer first"
 
 # Runs the stages for the current mutant; sets result/detail when one kills it and moves that
-# executable to the front. Returns 1 when every stage passed (the whole suite decides).
+# executable to the front. The first (the last killer) is built alone, the rest `jobs` at a
+# time (one test is one translation unit: built alone it would leave the other cores idle).
+# Returns 1 when every stage passed (the whole suite decides).
 run_stages() {  # id
-  local k exe wd filt name rc
-  for k in "${!stages[@]}"; do
-    IFS=$'\t' read -r exe wd filt <<< "${stages[$k]}"
-    name="$(basename "$exe")"
-    if ! build "$logs/$1.build.log" "$name"; then
+  local start=0 size=1 k exe wd filt name rc names
+  while (( start < ${#stages[@]} )); do
+    names=()
+    for ((k = start; k < start + size && k < ${#stages[@]}; ++k)); do
+      IFS=$'\t' read -r exe wd filt <<< "${stages[$k]}"
+      names+=("$(basename "$exe")")
+    done
+    if ! build "$logs/$1.build.log" "${names[@]}"; then
       result="build-failed"
       detail="$(grep -m1 -E 'error:' "$logs/$1.build.log" | sed -E 's/^[^ ]*: error: //; s/\|/\\|/g' | cut -c1-100)"
       return 0
     fi
-    rc=0
-    (cd "$wd" && timeout -k 10 "$limit" "$exe" --gtest_filter="$filt" --gtest_brief=1) \
-      > "$logs/$1.test.log" 2>&1 || rc=$?
-    if (( rc != 0 )); then
-      result="killed"
-      if (( rc == 124 || rc == 137 )); then
-        detail="$name timed out after ${limit}s"
-      else
-        detail="$(grep -Eo '^\[  FAILED  \] [A-Za-z0-9_/.]+' "$logs/$1.test.log" | sed -E 's/^\[  FAILED  \] //' |
-          sort -u | head -3 | paste -sd ' ' -)"
-        detail="$name: ${detail:-exit status $rc}"
+    for ((k = start; k < start + size && k < ${#stages[@]}; ++k)); do
+      IFS=$'\t' read -r exe wd filt <<< "${stages[$k]}"
+      name="$(basename "$exe")"
+      rc=0
+      (cd "$wd" && timeout -k 10 "$limit" "$exe" --gtest_filter="$filt" --gtest_brief=1) \
+        > "$logs/$1.test.log" 2>&1 || rc=$?
+      if (( rc != 0 )); then
+        result="killed"
+        if (( rc == 124 || rc == 137 )); then
+          detail="$name timed out after ${limit}s"
+        else
+          detail="$(grep -Eo '^\[  FAILED  \] [A-Za-z0-9_/.]+' "$logs/$1.test.log" | sed -E 's/^\[  FAILED  \] //' |
+            sort -u | head -3 | paste -sd ' ' -)"
+          detail="$name: ${detail:-exit status $rc}"
+        fi
+        stages=("${stages[$k]}" "${stages[@]:0:$k}" "${stages[@]:$((k + 1))}")
+        return 0
       fi
-      stages=("${stages[$k]}" "${stages[@]:0:$k}" "${stages[@]:$((k + 1))}")
-      return 0
-    fi
+    done
+    start=$((start + size))
+    size=$jobs
   done
   return 1
 }

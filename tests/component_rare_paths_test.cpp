@@ -2,7 +2,8 @@
 // (docs/mutation.md names the mutants each test kills): the body's rate changing within a
 // tick, stale readings and an invalid spin readback, a reading and its prediction on opposite
 // sides of zero near a gimbal stop, leaving safe mode after ticks that could not be measured,
-// uncaging again, and the torque shaper at its longest spacing.
+// uncaging again, the torque law once navigation is lost, and the torque shaper at its
+// longest spacing.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -130,6 +131,32 @@ TEST(ComponentSpin, GivenAReadbackMarkedInvalidThenTheNominalSpinIsUsed) {
   ASSERT_EQ(b.step(), Status::kOk);
   EXPECT_EQ(b.tm().spin_hz, 100.0) << "marked valid again: used";
   EXPECT_TRUE(b.raised(kSpinLow));
+}
+
+// ---- navigation lost -----------------------------------------------------------------------
+
+// Navigation that stops vouching for the body (marked invalid) leaves its rates unknown: the
+// torque law's bearing term, friction times the body's rate on the gimbal axes, drops out
+// instead of holding the last believed rate. Caged at a zero reading the command is then
+// exactly that of a body at rest once the shaper has let the earlier commands out.
+TEST(ComponentNavigation, GivenNavigationLostWhileTheBodyTurnsThenTheTorqueLawTakesTheBodyRateAsUnknown) {
+  Bench turning;
+  Bench still;
+  ASSERT_TRUE(turning.ok && still.ok);
+  turning.guidance.body_rate_rad_s = Vector3<double>(0.0, 0.5, -0.3);  // (roll, pitch, yaw)
+  turning.run(10);
+  still.run(10);
+  EXPECT_GT(turning.tm().torque_cmd.cwiseAbs().maxCoeff(), 1e-3) << "caged, the loop follows the turning body";
+  turning.guidance.nav_valid = false;
+  still.guidance.nav_valid = false;
+  for (int k = 0; k < 40; ++k) {
+    (void)turning.step();
+    (void)still.step();
+  }
+  EXPECT_TRUE(turning.raised(kNavInvalid));
+  EXPECT_TRUE(turning.tm().torque_cmd == still.tm().torque_cmd)
+      << turning.tm().torque_cmd.transpose() << " against " << still.tm().torque_cmd.transpose();
+  EXPECT_TRUE(turning.port.torque_written == Vector2<double>::Zero()) << turning.port.torque_written.transpose();
 }
 
 // ---- the gimbal stops ---------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 
 #include "gyro/gyro_component.hpp"
 #include "gyro/gyro_model.hpp"
@@ -480,6 +481,41 @@ TEST(ComponentTorqueLaw, GivenANegativeRotorMomentumOnTheOverflowPathThenTheTorq
   }
   EXPECT_TRUE(b.raised(kTorquerSaturated));
   EXPECT_EQ(b.port.torque_written.cwiseAbs().maxCoeff(), c.max_torque);
+}
+
+// Saturation divides by the largest component first: it becomes exactly 1, so the command's
+// largest axis sits exactly at max_torque. Scaling by max_torque / largest instead rounds
+// that ratio, subnormal when the law's torque nears the largest double (a spin of 1e200 Hz
+// and slews of 1e110 rad/s: 1e307 N m), and lands off the limit. Each slew is held for three
+// ticks, so that the shaper's taps agree and give it back exactly.
+TEST(ComponentTorqueLaw, GivenTorquesNearTheLargestDoubleThenTheLargestAxisIsExactlyAtTheLimit) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.max_pitch_rate_rad_s = 1e300;
+  c.max_yaw_rate_rad_s = 1e300;
+  c.residual_persistence_ticks = 1000;  // the scripted readings stay at zero while the prediction slews
+  c.uncage_settle_ticks = 1;
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = 1e200;  // H = 1.9e196
+  b.run(3);
+  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+  b.run(2);
+  ASSERT_EQ(b.component.mode(), GyroMode::kFree);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> rate(-9e110, 9e110);
+  for (int n = 0; n < 20; ++n) {
+    const Vector2<double> w(rate(rng), rate(rng));
+    SCOPED_TRACE(w.transpose());
+    b.guidance.slew_rate_cmd_rad_s = w;
+    b.run(3);
+    ASSERT_TRUE(b.raised(kTorquerSaturated));
+    const Vector2<double> t = b.port.torque_written;
+    EXPECT_EQ(t.cwiseAbs().maxCoeff(), c.max_torque) << t.transpose();
+    const Vector2<double> law(w(1), -w(0));  // cos th = 1 at the zero gimbal angles read
+    EXPECT_NEAR(t(0), law(0) / law.cwiseAbs().maxCoeff() * c.max_torque, 1e-12);
+    EXPECT_NEAR(t(1), law(1) / law.cwiseAbs().maxCoeff() * c.max_torque, 1e-12);
+  }
+  EXPECT_EQ(b.component.mode(), GyroMode::kFree);
 }
 
 // ---- the model's gimbal-limit flag after a correction -----------------------------------------

@@ -309,6 +309,24 @@ TEST(ComponentTelemetry, GivenTheSpinDropsBelowTwiceTheTickRateOfNutationThenThe
   EXPECT_TRUE(b.raised(kNutationUnresolved));
 }
 
+// The flag speaks of the estimate (its nutation cannot be checked against aliased pickoffs):
+// none before the estimator has started, raised on the tick it starts.
+TEST(ComponentTelemetry, GivenAnAliasedNutationThenUnresolvedIsFlaggedOnlyOnceThereIsAnEstimate) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.tick_s = 1e-3;  // 600 Hz nutation at a 1 kHz tick: aliased
+  c.cage_gain_1_s = 10;
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.guidance.nav_valid = false;  // no navigation: nothing to start the estimator from
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_FALSE(b.raised(kNutationUnresolved)) << "tick " << b.tick;
+  }
+  b.guidance.nav_valid = true;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_TRUE(b.raised(kNutationUnresolved));
+}
+
 // ---- navigation and configuration at their edges ------------------------------------------------
 
 TEST(ComponentNavigation, GivenABodyRateExactlyAtItsLimitThenUsedAndJustBeyondItIgnored) {

@@ -329,11 +329,10 @@ std::vector<std::string_view> field_keys(const Config& c, const char* section) {
 // An enumerator by the name enum_names(E) gives it ("motor", "free").
 template <class E>
 E read_enum(const Reader& r, std::string_view key) {
-  constexpr auto names = enum_names(E{});
   const std::string text = r.text(key, "");
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (text == names[i]) return static_cast<E>(i);
-  }
+  E value{};
+  if (enum_from_name(text, value)) return value;
+  constexpr auto names = enum_names(E{});
   std::string expected;
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (i > 0) expected += i + 1 == names.size() ? " or " : ", ";
@@ -634,9 +633,8 @@ std::optional<FaultKind> parse_fault_kind(std::string_view name) noexcept {
 }
 
 const char* request_name(ModeRequest r) noexcept {
-  constexpr auto names = enum_names(ModeRequest{});
-  const auto i = static_cast<std::size_t>(r);
-  return i < names.size() ? names[i] : "unknown";
+  const char* name = enum_name(r);
+  return name != nullptr ? name : "unknown";
 }
 
 Scenario parse_scenario(std::string_view json_text, const std::string& file) {

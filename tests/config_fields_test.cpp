@@ -244,5 +244,34 @@ TEST(ConfigFields, GivenTheScenarioDocsWHENComparedWithTheTablesTHENTheyAgree) {
   for (const std::string& k : documented) EXPECT_TRUE(fields.count(k)) << k << " is documented but no field";
 }
 
+// Every name of an enumeration gives its own enumerator back; an unknown name or a value
+// outside the enumeration gives none (and leaves the target as it was).
+template <class E>
+void expect_names_round_trip(E unnamed_default) {
+  constexpr auto names = enum_names(E{});
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    E e = unnamed_default;
+    ASSERT_TRUE(enum_from_name(names[i], e)) << names[i];
+    EXPECT_EQ(static_cast<std::size_t>(e), i) << names[i];
+    EXPECT_STREQ(enum_name(e), names[i]);
+    EXPECT_TRUE(seen.insert(names[i]).second) << names[i] << " names two enumerators";
+  }
+  E e = unnamed_default;
+  EXPECT_FALSE(enum_from_name(std::string(names[0]) + "x", e));
+  EXPECT_FALSE(enum_from_name("", e));
+  EXPECT_EQ(e, unnamed_default);
+  EXPECT_EQ(enum_name(static_cast<E>(names.size())), nullptr);
+}
+
+TEST(ConfigFields, GivenEachEnumerationWHENANameIsLookedUpTHENItsOwnEnumeratorComesBack) {
+  expect_names_round_trip(Status::kInputIgnored);
+  expect_names_round_trip(TorquerAxes::kGimbal);
+  expect_names_round_trip(ModeRequest::kUncage);
+  expect_names_round_trip(SpinDrive::kFree);
+  expect_names_round_trip(TorqueAxes::kGyro);
+  static_assert(enum_name(Status::kWrongMode)[0] == 'w', "usable in constant expressions");
+}
+
 }  // namespace
 }  // namespace gyro

@@ -60,18 +60,9 @@ void set_member(M& m, py::handle v, const std::string& path) {
   } else if constexpr (std::is_integral_v<M>) {
     m = to_count<M>(v, path);
   } else if constexpr (kHasEnumNames<M>) {
-    constexpr auto names = enum_names(M{});
-    if (py::isinstance<py::str>(v)) {
-      const std::string s = v.cast<std::string>();
-      for (std::size_t i = 0; i < names.size(); ++i) {
-        if (s == names[i]) {
-          m = static_cast<M>(i);
-          return;
-        }
-      }
-    }
+    if (py::isinstance<py::str>(v) && enum_from_name(v.cast<std::string>(), m)) return;
     std::string all;
-    for (const char* n : names) all += (all.empty() ? "" : ", ") + std::string(n);
+    for (const char* n : enum_names(M{})) all += (all.empty() ? "" : ", ") + std::string(n);
     raise_config_error(path, "expected one of " + all);
   } else if constexpr (kHasFieldTable<M>) {
     if (!py::isinstance<py::dict>(v)) raise_config_error(path, "expected a dict");
@@ -99,9 +90,8 @@ py::object get_member(const M& m) {
   } else if constexpr (std::is_integral_v<M>) {
     return py::int_(m);
   } else if constexpr (kHasEnumNames<M>) {
-    constexpr auto names = enum_names(M{});
-    const auto i = static_cast<std::size_t>(m);
-    return i < names.size() ? py::object(py::str(names[i])) : py::object(py::none());
+    const char* name = enum_name(m);
+    return name != nullptr ? py::object(py::str(name)) : py::object(py::none());
   } else if constexpr (kHasFieldTable<M>) {
     return to_dict(m);
   } else {

@@ -24,7 +24,7 @@ enum class Status : std::uint8_t {
   kInputIgnored,            // the call ran, without some unusable input fields (flags say which)
 };
 
-// Each status's name (as the Python binding and logs spell it), in enumerator order.
+// Each status's name (as the Python binding spells it: gyro.Status), in enumerator order.
 [[nodiscard]] constexpr std::array<const char*, 13> enum_names(Status /*tag*/) noexcept {
   return {"ok", "non_finite_input", "non_positive_inertia", "negative_friction", "negative_angular_momentum",
           "non_positive_step", "no_steady_state", "out_of_range", "numerical_overflow", "not_configured",

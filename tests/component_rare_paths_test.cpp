@@ -3,7 +3,7 @@
 // tick, stale readings and an invalid spin readback, a reading and its prediction on opposite
 // sides of zero near a gimbal stop, leaving safe mode after ticks that could not be measured,
 // uncaging again, the torque law once navigation is lost, and the torque shaper at its
-// longest spacing.
+// longest spacing and on leaving safe mode.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -330,6 +330,38 @@ TEST(ComponentTorqueShaper, GivenANutationNeedingEightTicksBetweenTapsThenShaped
     } else {
       EXPECT_NEAR(first / steady, 1.0, 1e-3) << "not shaped";
     }
+  }
+}
+
+// Safe mode writes zero torque at once and empties the shaper: leaving it starts from rest.
+// Here the fault latches while the cage loop is pulling (an input fault: a request no
+// enumerator has, every tick, with the readings still accepted), so the shaper's taps hold
+// the cage loop's torques; caged again at a zero reading with the body at rest, the law asks
+// for nothing, and nothing from before the fault may be blended in.
+TEST(ComponentTorqueShaper, GivenSafeModeEnteredWhileTheCageLoopPullsWhenCagedAtRestThenNoTorqueOfBeforeIsWritten) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.min_spin_hz = 10.0;
+  const double beta_dt = kPi<double> / 7.5;  // taps 4 ticks apart
+  Bench b(c);
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = beta_dt / c.tick_s * c.pitch_inertia / (2 * kPi<double> * c.spin_inertia);
+  b.run(20);
+  ASSERT_EQ(b.port.torque_written, Vector2<double>::Zero());
+  b.port.reading.gimbal_angle_rad = Vector2<double>(2e-3, -1e-3);
+  b.run(12);  // beyond two spacings: every tap holds the cage loop's torque
+  ASSERT_GT(b.port.torque_written.cwiseAbs().minCoeff(), 1e-5);
+  const auto unknown_request = static_cast<ModeRequest>(7);
+  for (std::uint32_t k = 0; k < c.input_persistence_ticks && b.component.mode() != GyroMode::kFault; ++k) {
+    ASSERT_EQ(b.step(unknown_request), Status::kInputIgnored);
+  }
+  ASSERT_EQ(b.component.mode(), GyroMode::kFault);
+  EXPECT_EQ(b.port.torque_written, Vector2<double>::Zero()) << "safe mode cuts at once";
+  b.port.reading.gimbal_angle_rad = Vector2<double>::Zero();
+  for (int k = 0; k < 200 && b.component.mode() == GyroMode::kFault; ++k) ASSERT_EQ(b.step(ModeRequest::kCage), Status::kOk);
+  ASSERT_EQ(b.component.mode(), GyroMode::kCaged);
+  for (int k = 0; k < 12; ++k) {
+    EXPECT_EQ(b.port.torque_written, Vector2<double>::Zero()) << k << " ticks after leaving safe mode";
+    ASSERT_EQ(b.step(), Status::kOk);
   }
 }
 

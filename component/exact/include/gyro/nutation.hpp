@@ -96,11 +96,9 @@ template <typename T>
     // f = H = 0: no transient to nutate; or one too large to represent.
     return map.saturated ? Vector2<T>::Constant(std::numeric_limits<T>::max()) : Vector2<T>::Zero();
   }
-  Vector2<T> u = rate_rad_s;
-  u.noalias() -= map.steady_from_torque * torque;
-  Vector2<T> y, ny;
-  y.noalias() = map.transient_from_rate * u;
-  ny.noalias() = map.rotated_from_rate * u;
+  const Vector2<T> u = rate_rad_s - times(map.steady_from_torque, torque);
+  const Vector2<T> y = times(map.transient_from_rate, u);
+  const Vector2<T> ny = times(map.rotated_from_rate, u);
   Vector2<T> amp;
   for (int i = 0; i < 2; ++i) {
     const T by_sum = std::abs(y(i)) + map.envelope * std::abs(ny(i));

@@ -75,7 +75,7 @@ class GyroComponent {
     const bool fault_now = update_monitors(r.accepted, input_bad, flags);
     update_mode(request, r.accepted && nav_ok, fault_now);
 
-    const GimbalFrame<T> frame = frame_now();
+    const GimbalFrame<T>& frame = frame_now();
     const Vector2<T> rate_cmd = rate_command(frame, nav_ok, r.accepted, flags);
     const Vector2<T> torque = shape_torque(torque_command(frame, rate_cmd, spin, nav_ok, flags), spin);
     if (port_.write_torquer(torque) == PortStatus::kOk) {
@@ -234,7 +234,7 @@ class GyroComponent {
       residual_.setZero();
       return;
     }
-    GyroStepInput<T> s;
+    GyroStepInput<T>& s = step_input_;  // a member: its unread attitude is not rebuilt each tick
     s.dt_s = config_.tick_s * static_cast<T>(elapsed);
     s.spin_hz = spin;
     s.body_rate_rad_s = T(0.5) * (body_rate_prev_ + body_rate_);
@@ -315,8 +315,10 @@ class GyroComponent {
   [[nodiscard]] static T clamp(T v, T limit) noexcept { return std::min(limit, std::max(-limit, v)); }
 
   // The gimbal frame the torque law resolves on: the estimator's, else the pickoffs'.
-  [[nodiscard]] GimbalFrame<T> frame_now() const noexcept {
-    return estimator_ready_ ? estimator_.gimbal_frame_now() : gimbal_frame_at(measured_);
+  [[nodiscard]] const GimbalFrame<T>& frame_now() noexcept {
+    if (estimator_ready_) return estimator_.gimbal_frame_now();
+    pickoff_frame_ = gimbal_frame_at(measured_);
+    return pickoff_frame_;
   }
 
   // Spin-axis rates wanted this tick on the gimbal axes (pitch about y_I, yaw about z_I),
@@ -396,11 +398,11 @@ class GyroComponent {
       wanted_history_.fill(Vector2<T>::Zero());  // leaving safe mode starts from rest
       return wanted;
     }
-    wanted_head_ = (wanted_head_ + 1u) % kShaperLength;
+    wanted_head_ = (wanted_head_ + 1u) & kShaperMask;
     wanted_history_[wanted_head_] = wanted;
     if (nutation_beta(spin) <= T(0) || shaper_spacing_ == 0u) return wanted;
-    const Vector2<T>& mid = wanted_history_[(wanted_head_ + kShaperLength - shaper_spacing_) % kShaperLength];
-    const Vector2<T>& old = wanted_history_[(wanted_head_ + kShaperLength - 2u * shaper_spacing_) % kShaperLength];
+    const Vector2<T>& mid = wanted_history_[(wanted_head_ - shaper_spacing_) & kShaperMask];
+    const Vector2<T>& old = wanted_history_[(wanted_head_ - 2u * shaper_spacing_) & kShaperMask];
     // Written about the middle tap (equal taps give it back exactly); rounding can still pass
     // the limit by an ulp, hence the clamp.
     const Vector2<T> out = mid + shaper_edge_ * ((wanted - mid) + (old - mid));
@@ -488,6 +490,8 @@ class GyroComponent {
   Vector2<T> residual_{Vector2<T>::Zero()};
   Vector2<T> predicted_{Vector2<T>::Zero()};  // the estimator's gimbal angles before correction
   T predicted_cos_cone_{T(1)};
+  GimbalFrame<T> pickoff_frame_{};  // the frame at the pickoffs' angles, before the estimator runs
+  GyroStepInput<T> step_input_{};   // the estimator's step input (its attitude is passed checked)
   Vector2<T> torque_held_{Vector2<T>::Zero()};
   std::uint32_t last_sequence_{0};
   bool have_reading_{false};
@@ -504,9 +508,13 @@ class GyroComponent {
   std::uint32_t settle_ticks_{0};
   T nutation_spin_{-1};
   T nutation_beta_{};
-  // The torque shaper (shape_torque): the torque law's last 2 kShaperMaxSpacing + 1 outputs.
+  // The torque shaper (shape_torque): the torque law's last outputs (2 kShaperMaxSpacing + 1 read).
   static constexpr std::uint32_t kShaperMaxSpacing = 8;
-  static constexpr std::uint32_t kShaperLength = 2u * kShaperMaxSpacing + 1u;
+  // A power of two of at least 2 kShaperMaxSpacing + 1 entries: the ring's index is masked (the
+  // unsigned difference wraps to the same entry), not divided.
+  static constexpr std::uint32_t kShaperLength = 32;
+  static constexpr std::uint32_t kShaperMask = kShaperLength - 1u;
+  static_assert((kShaperLength & kShaperMask) == 0u && kShaperLength >= 2u * kShaperMaxSpacing + 1u);
   std::array<Vector2<T>, kShaperLength> wanted_history_{};
   std::uint32_t wanted_head_{0};
   std::uint32_t shaper_spacing_{0};  // m; 0: not shaped

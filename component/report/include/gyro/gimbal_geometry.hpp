@@ -38,12 +38,14 @@ struct GimbalFrame {
 template <typename T>
 inline constexpr T kMinCosPitch = T(0.05);
 
-// The gimbal frame of a gyro whose axes, in body axes, are the columns of R_gyro_to_body
-// (column 0 the spin axis).
+namespace detail {
+// The gimbal frame from the spin axis x in body axes and the first two body components of the
+// gyro's y_g and z_g. (y_I, z_I) and (y_g, z_g) are right-handed bases of the same plane, so
+// gimbal_to_gyro is the 2x2 rotation [c s; -s c] with c = y_I . y_g and s = -y_I . z_g, and y_I
+// has no body z component: the last row of y_g and z_g is not needed.
+// Every field of `f` is written (a frame is filled in place, without a copy).
 template <typename T>
-[[nodiscard]] GimbalFrame<T> gimbal_frame(const Matrix3<T>& R_gyro_to_body) noexcept {
-  const Vector3<T> x = R_gyro_to_body.col(0);
-  GimbalFrame<T> f;
+void gimbal_frame_from(const Vector3<T>& x, T yg0, T yg1, T zg0, T zg1, GimbalFrame<T>& f) noexcept {
   const T horizontal = std::sqrt(x(0) * x(0) + x(1) * x(1));  // cos th
   T cos_yaw = T(1), sin_yaw = T(0);
   if (horizontal > T(0)) {
@@ -55,10 +57,38 @@ template <typename T>
   f.spin_axis_body = x;
   f.y_inner_body = Vector3<T>(-sin_yaw, cos_yaw, T(0));
   f.z_inner_body = Vector3<T>(f.sin_pitch * cos_yaw, f.sin_pitch * sin_yaw, horizontal);
-  const Vector3<T> y_g = R_gyro_to_body.col(1), z_g = R_gyro_to_body.col(2);
-  f.gimbal_to_gyro << f.y_inner_body.dot(y_g), f.z_inner_body.dot(y_g), f.y_inner_body.dot(z_g),
-      f.z_inner_body.dot(z_g);
+  const T c = cos_yaw * yg1 - sin_yaw * yg0, s = sin_yaw * zg0 - cos_yaw * zg1;
+  f.gimbal_to_gyro << c, s, -s, c;
+}
+}  // namespace detail
+
+// The gimbal frame of a gyro whose axes, in body axes, are the columns of R_gyro_to_body
+// (column 0 the spin axis).
+template <typename T>
+[[nodiscard]] GimbalFrame<T> gimbal_frame(const Matrix3<T>& R_gyro_to_body) noexcept {
+  const Matrix3<T>& r = R_gyro_to_body;
+  GimbalFrame<T> f;
+  detail::gimbal_frame_from<T>(r.col(0), r(0, 1), r(1, 1), r(0, 2), r(1, 2), f);
   return f;
+}
+
+// The same for a gyro at attitude q_gyro_to_earth on a body at R_earth_to_body, written into
+// `out`, without the whole product R_earth_to_body R(q): the spin axis and four entries of
+// the other two columns.
+template <typename T>
+void gimbal_frame(const Matrix3<T>& R_earth_to_body, const Quaternion<T>& q_gyro_to_earth,
+                  GimbalFrame<T>& out) noexcept {
+  const T w = q_gyro_to_earth.w(), qx = q_gyro_to_earth.x(), qy = q_gyro_to_earth.y(), qz = q_gyro_to_earth.z();
+  const Vector3<T> x_earth = spin_axis_in_earth(q_gyro_to_earth);
+  const Vector3<T> y_earth(T(2) * (qx * qy - w * qz), T(1) - T(2) * (qx * qx + qz * qz), T(2) * (qy * qz + w * qx));
+  const Vector3<T> z_earth(T(2) * (qx * qz + w * qy), T(2) * (qy * qz - w * qx), T(1) - T(2) * (qx * qx + qy * qy));
+  const Matrix3<T>& r = R_earth_to_body;
+  const auto row_dot = [&r](int i, const Vector3<T>& v) noexcept {
+    return r(i, 0) * v(0) + r(i, 1) * v(1) + r(i, 2) * v(2);
+  };
+  const Vector3<T> x(row_dot(0, x_earth), row_dot(1, x_earth), row_dot(2, x_earth));
+  detail::gimbal_frame_from<T>(x, row_dot(0, y_earth), row_dot(1, y_earth), row_dot(0, z_earth), row_dot(1, z_earth),
+                               out);
 }
 
 // The gimbal frame at the gimbal angles (pitch, yaw), for a gyro whose own axes are the

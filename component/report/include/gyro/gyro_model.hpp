@@ -159,7 +159,7 @@ class GyroModel {
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
     flags_ = gimbal_flag(gimbal_);
     R_earth_to_body_ = R_earth_to_body;
-    frame_ = gimbal_frame(gyro_to_body(R_earth_to_body));
+    gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
     uncaged_ = true;
     have_frame_roll_ = false;
     return Status::kOk;
@@ -180,8 +180,8 @@ class GyroModel {
     q.normalize();
     q_gyro_to_earth_ = q;
     R_earth_to_body_ = R_earth_to_body;
-    frame_ = gimbal_frame(gyro_to_body(R_earth_to_body));
-    rate_rad_s_ = frame_.gimbal_to_gyro * body_rate_on_gimbal(frame_, body_rate_rad_s);
+    gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
+    rate_rad_s_ = times(frame().gimbal_to_gyro, body_rate_on_gimbal(frame(), body_rate_rad_s));
     isaf_angle_rad_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
@@ -199,7 +199,7 @@ class GyroModel {
                              clamp(slew_rate_cmd_rad_s(1), config_.max_yaw_rate_rad_s));
     const T h = angular_momentum(in.spin_hz, config_.spin_inertia);
     if (config_.torquer_axes == TorquerAxes::kGimbal) {
-      return step_torque(in, torquers_for_rate(frame_, h, T(0), limited, Vector2<T>(Vector2<T>::Zero())));
+      return step_torque(in, torquers_for_rate(frame(), h, T(0), limited, Vector2<T>(Vector2<T>::Zero())));
     }
     return step_torque(in, torque_for_rate_frictionless(h, limited));
   }
@@ -253,11 +253,12 @@ class GyroModel {
       cache_valid_ = true;
     }
 
-    GimbalFrame<T> end_frame = frame_;
+    // kGimbal: the frame at the step's end goes to the spare buffer, taken on success.
+    const bool on_gimbal = config_.torquer_axes == TorquerAxes::kGimbal;
     T frame_roll{};
-    const Vector2<T> rotor_torque = (config_.torquer_axes == TorquerAxes::kGimbal)
-                                        ? torque_on_gyro_axes(in, R_earth_to_body, torque_cmd, end_frame, frame_roll)
-                                        : torque_cmd;
+    const Vector2<T> rotor_torque =
+        on_gimbal ? torque_on_gyro_axes(in, R_earth_to_body, torque_cmd, frames_[frame_index_ ^ 1u], frame_roll)
+                  : torque_cmd;
     // The error sources as torques (none configured: the torquers' alone, as the sums below
     // would give with every coefficient zero).
     const Vector2<T> torque = has_error_sources_ ? with_error_sources(in, rotor_torque, prm.angular_momentum)
@@ -291,7 +292,7 @@ class GyroModel {
     flags_ = step_flags;
     applied_torque_ = torque;
     R_earth_to_body_ = R_earth_to_body;
-    frame_ = end_frame;
+    if (on_gimbal) frame_index_ ^= 1u;
     frame_roll_ = frame_roll;
     have_frame_roll_ = true;
     return Status::kOk;
@@ -331,8 +332,8 @@ class GyroModel {
   template <typename Attitude>  // Matrix3<T> or CheckedRotation<T>
   [[nodiscard]] Status correct_gimbal_angles(const Vector2<T>& gimbal_rad, const Attitude& R_earth_to_body) noexcept {
     if (!all_finite(gimbal_rad)) return Status::kNonFiniteInput;
-    const Vector2<T> on_gimbal(gimbal_rad(0), gimbal_rad(1) * frame_.cos_pitch);
-    return correct_attitude(Vector2<T>(frame_.gimbal_to_gyro * on_gimbal), R_earth_to_body);
+    const Vector2<T> on_gimbal(gimbal_rad(0), gimbal_rad(1) * frame().cos_pitch);
+    return correct_attitude(times(frame().gimbal_to_gyro, on_gimbal), R_earth_to_body);
   }
 
   [[nodiscard]] const Quaternion<T>& attitude_gyro_to_earth() const noexcept { return q_gyro_to_earth_; }
@@ -341,8 +342,8 @@ class GyroModel {
   }
   [[nodiscard]] const Vector2<T>& rate_rad_s() const noexcept { return rate_rad_s_; }  // (theta', psi')
   // The spin axis's inertial rate on the inner gimbal axes (pitch about y_I, yaw about z_I).
-  [[nodiscard]] Vector2<T> rate_on_gimbal_rad_s() const noexcept { return frame_.gimbal_to_gyro.transpose() * rate_rad_s_; }
-  [[nodiscard]] const GimbalFrame<T>& gimbal_frame_now() const noexcept { return frame_; }
+  [[nodiscard]] Vector2<T> rate_on_gimbal_rad_s() const noexcept { return transpose_times(frame().gimbal_to_gyro, rate_rad_s_); }
+  [[nodiscard]] const GimbalFrame<T>& gimbal_frame_now() const noexcept { return frame(); }
   // kGimbal: the inner gimbal's roll rate about the spin axis over the last step (0 before
   // one): J0 times it is the rotor's momentum beyond the motor-held spin's.
   [[nodiscard]] T inner_gimbal_roll_rad_s() const noexcept { return have_frame_roll_ ? frame_roll_ : T(0); }
@@ -384,13 +385,6 @@ class GyroModel {
     return gimbal_;
   }
 
-  // The gyro axes in body axes: columns x (spin), y_g, z_g.
-  [[nodiscard]] Matrix3<T> gyro_to_body(const Matrix3<T>& R_earth_to_body) const noexcept {
-    Matrix3<T> r;
-    r.noalias() = R_earth_to_body * q_gyro_to_earth_.toRotationMatrix();
-    return r;
-  }
-
   // kGimbal: the torquers' and bearings' torque on the rotor, on the gyro's axes. The torquer
   // axes turn with the body over the step: the mean of their two ends is held (second order
   // in the step). The friction correction moves the model's f w onto the gimbal rates. The
@@ -402,14 +396,14 @@ class GyroModel {
   [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Matrix3<T>& R_earth_to_body,
                                                const Vector2<T>& torquer, GimbalFrame<T>& end_frame,
                                                T& frame_roll) const noexcept {
-    const GimbalFrame<T>& start = frame_;  // the last step's end (its spin axis: within a tick's turn)
-    end_frame = gimbal_frame(gyro_to_body(R_earth_to_body));
-    const Vector2<T> rate_on_gimbal = start.gimbal_to_gyro.transpose() * rate_rad_s_;
+    const GimbalFrame<T>& start = frame();  // the last step's end (its spin axis: within a tick's turn)
+    gimbal_frame(R_earth_to_body, q_gyro_to_earth_, end_frame);
+    const Vector2<T> rate_on_gimbal = transpose_times(start.gimbal_to_gyro, rate_rad_s_);
     const Vector2<T> body_on_gimbal = body_rate_on_gimbal(start, in.body_rate_rad_s);
     frame_roll = inner_gimbal_roll(start, in.body_rate_rad_s, rate_on_gimbal, body_on_gimbal);
-    Vector2<T> t = T(0.5) * (start.gimbal_to_gyro * rotor_torque_from_torquers(start, torquer) +
-                             end_frame.gimbal_to_gyro * rotor_torque_from_torquers(end_frame, torquer));
-    t += start.gimbal_to_gyro * friction_correction(start, config_.friction, rate_on_gimbal, body_on_gimbal);
+    Vector2<T> t = T(0.5) * (times(start.gimbal_to_gyro, rotor_torque_from_torquers(start, torquer)) +
+                             times(end_frame.gimbal_to_gyro, rotor_torque_from_torquers(end_frame, torquer)));
+    t += times(start.gimbal_to_gyro, friction_correction(start, config_.friction, rate_on_gimbal, body_on_gimbal));
     // The exact step precesses with the readback's H: the rest of the momentum, J0 frame_roll,
     // needs (J0 frame_roll) (w_z, -w_y) more, taken off the torque (a quarter turn of w).
     t += config_.spin_inertia * frame_roll * Vector2<T>(-rate_rad_s_(1), rate_rad_s_(0));
@@ -460,7 +454,11 @@ class GyroModel {
   bool drift_needs_angles_{false};
   bool has_error_sources_{false};
   Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};  // body at the start of the next step
-  GimbalFrame<T> frame_{};           // gimbal frame at the end of the last step
+  // The gimbal frame at the end of the last step, and a spare the next step writes its end
+  // frame into (kept only if the step succeeds: no copy of the frame per step).
+  std::array<GimbalFrame<T>, 2> frames_{};
+  std::uint32_t frame_index_{0};
+  [[nodiscard]] const GimbalFrame<T>& frame() const noexcept { return frames_[frame_index_]; }
   RotorTransition<T> transition_{};  // cached while H and dt stay the same
   NutationMap<T> nutation_map_{};    // cached with it (depends on H only)
   T cached_h_{};

@@ -107,5 +107,40 @@ TEST(GimbalFrameLock, GivenAGyroOnItsGimbalsThenTheFrameOfItsAxesIsTheFrameAtIts
   }
 }
 
+// A gyro twisted about its spin axis against the gimbal: the 2x2 twist is each dot product of
+// the gimbal's (y_I, z_I) with the gyro's (y_g, z_g), taken here from the matrices directly,
+// and the frame from an attitude and a body (without the whole product) is the frame of the
+// product.
+TEST(GimbalFrameTwist, GivenAGyroRolledOnItsGimbalThenTheTwistIsTheDotProductsOfTheTwoFrames) {
+  const Vector2<double> gimbal(0.4, -1.1);
+  for (const double roll : {0.0, 0.3, -2.0, 3.0}) {
+    SCOPED_TRACE(roll);
+    const Matrix3<double> gyro_to_body = (Eigen::AngleAxis<double>(gimbal(1), Vector3<double>::UnitZ()) *
+                                          Eigen::AngleAxis<double>(gimbal(0), Vector3<double>::UnitY()) *
+                                          Eigen::AngleAxis<double>(roll, Vector3<double>::UnitX()))
+                                             .toRotationMatrix();
+    const GimbalFrame<double> f = gimbal_frame(gyro_to_body);
+    const Vector3<double> y_g = gyro_to_body.col(1), z_g = gyro_to_body.col(2);
+    Matrix2<double> dots;
+    dots << f.y_inner_body.dot(y_g), f.z_inner_body.dot(y_g), f.y_inner_body.dot(z_g), f.z_inner_body.dot(z_g);
+    EXPECT_LT((f.gimbal_to_gyro - dots).cwiseAbs().maxCoeff(), 1e-15) << f.gimbal_to_gyro << "\n" << dots;
+    EXPECT_NEAR(f.gimbal_to_gyro(0, 0), std::cos(roll), 1e-15);
+    EXPECT_NEAR(f.gimbal_to_gyro(0, 1), std::sin(roll), 1e-15);
+
+    // The same gyro as an attitude on a body turned in earth axes.
+    const Matrix3<double> earth_to_body = (Eigen::AngleAxis<double>(0.7, Vector3<double>(1.0, -2.0, 0.5).normalized()))
+                                              .toRotationMatrix();
+    const Quaternion<double> gyro_to_earth(Matrix3<double>(earth_to_body.transpose() * gyro_to_body));
+    GimbalFrame<double> from_attitude;
+    gimbal_frame(earth_to_body, gyro_to_earth, from_attitude);
+    EXPECT_LT((from_attitude.spin_axis_body - f.spin_axis_body).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((from_attitude.y_inner_body - f.y_inner_body).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((from_attitude.z_inner_body - f.z_inner_body).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((from_attitude.gimbal_to_gyro - f.gimbal_to_gyro).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_NEAR(from_attitude.cos_pitch, f.cos_pitch, 1e-15);
+    EXPECT_NEAR(from_attitude.sin_pitch, f.sin_pitch, 1e-15);
+  }
+}
+
 }  // namespace
 }  // namespace gyro

@@ -244,10 +244,9 @@ class GyroModel {
       const Status valid = validate(prm);
       if (valid != Status::kOk) return valid;
       const detail::RateMatrixTerms<T> terms = detail::rate_matrix_terms(prm);
-      RotorTransition<T> tr;
-      const Status st = detail::make_transition_from_terms(prm, terms, in.dt_s, tr);
+      // Written in place: a refused transition leaves transition_ (and the cache) as it was.
+      const Status st = detail::make_transition_from_terms(prm, terms, in.dt_s, transition_);
       if (st != Status::kOk) return st;
-      transition_ = tr;
       nutation_map_ = detail::nutation_map_from_terms(prm, terms);
       cached_h_ = prm.angular_momentum;
       cache_valid_ = true;

@@ -575,5 +575,54 @@ TEST(GyroModelCorrection, GivenAGimbalCorrectionOffThePitchZeroThenEachAngleMove
   }
 }
 
+// A correction taken at the next step is the same turn as one taken now followed by the
+// step: R(c) R(a) = R(c + a + (c x a) / 2 + third order). The reference is the product of the
+// two exact rotations; the roll term (c x a) / 2 is what makes them agree: without it the
+// attitudes differ by |c| |a| / 2 (1e-5 rad here), with it by less than the third-order
+// bound |a| |c| (|a| + |c|) / 12 = 2e-8 rad.
+TEST(GyroModelCorrection, GivenACorrectionAtTheNextStepThenTheStepEndsWhereTheCorrectionAndThenTheStepLeaveIt) {
+  const GyroModelConfig<double> c = ReportSample<double>::config();
+  const Matrix3<double> body = Eigen::AngleAxisd(0.3, Vector3<double>(1, -2, 0.5).normalized()).toRotationMatrix();
+  const auto uncaged = [&](GyroModel<double>& g) {
+    return g.configure(c).ok() && g.uncage(body, Vector2<double>(1.0, -0.5), Vector2<double>(0.1, -0.2)) == Status::kOk;
+  };
+  GyroModel<double> now, next, probe;
+  ASSERT_TRUE(uncaged(now) && uncaged(next) && uncaged(probe));
+  EXPECT_EQ(GyroModel<double>().correct_gimbal_angles_at_next_step(Vector2<double>(1e-3, 0.0)),
+            Status::kNotConfigured);
+  EXPECT_EQ(next.correct_gimbal_angles_at_next_step(Vector2<double>(std::nan(""), 0.0)), Status::kNonFiniteInput);
+  EXPECT_EQ(next.pending_correction_rad(), Vector2<double>::Zero()) << "a refused call changes nothing";
+
+  const Vector2<double> d(-0.7e-3, 0.5e-3);
+  ASSERT_EQ(now.correct_gimbal_angles(d, body), Status::kOk);
+  ASSERT_EQ(next.correct_gimbal_angles_at_next_step(Vector2<double>(0.5 * d)), Status::kOk);
+  ASSERT_EQ(next.correct_gimbal_angles_at_next_step(Vector2<double>(0.5 * d)), Status::kOk);  // the two add
+  const Vector2<double> corr = next.pending_correction_rad();
+  EXPECT_EQ(next.attitude_gyro_to_earth().coeffs(), probe.attitude_gyro_to_earth().coeffs()) << "not turned yet";
+
+  GyroStepInput<double> in;
+  in.dt_s = 0.02;
+  in.spin_hz = ReportSample<double>::kSpinHz;
+  in.R_earth_to_body = body;
+  const Vector2<double> torque(1500.0, -800.0);  // a precession near 1 rad/s against H = 1885
+  const Quaternion<double> start = next.attitude_gyro_to_earth();
+  ASSERT_EQ(now.step_torque(in, torque), Status::kOk);
+  ASSERT_EQ(next.step_torque(in, torque), Status::kOk);
+  EXPECT_EQ(next.pending_correction_rad(), Vector2<double>::Zero()) << "taken by the step";
+  const Vector2<double> a = next.isaf_angle_rad();
+  ASSERT_GT(a.norm(), 1e-2) << "a step long enough for the roll term to matter";
+  const double third_order = a.norm() * corr.norm() * (a.norm() + corr.norm()) / 12;
+  EXPECT_LT(now.attitude_gyro_to_earth().angularDistance(next.attitude_gyro_to_earth()), third_order + 1e-14);
+  const Quaternion<double> without_roll = start * step_rotation(Vector2<double>(a + corr));
+  EXPECT_GT(now.attitude_gyro_to_earth().angularDistance(without_roll), 0.3 * a.norm() * corr.norm())
+      << "the roll term is needed";
+  EXPECT_NEAR(now.gimbal_pitch_rad(), next.gimbal_pitch_rad(), third_order);
+  EXPECT_NEAR(now.gimbal_yaw_rad(), next.gimbal_yaw_rad(), third_order);
+
+  ASSERT_EQ(next.correct_gimbal_angles_at_next_step(d), Status::kOk);
+  ASSERT_TRUE(uncaged(next));
+  EXPECT_EQ(next.pending_correction_rad(), Vector2<double>::Zero()) << "uncaging drops a pending correction";
+}
+
 }  // namespace
 }  // namespace gyro

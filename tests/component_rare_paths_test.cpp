@@ -333,6 +333,48 @@ TEST(ComponentTorqueShaper, GivenANutationNeedingEightTicksBetweenTapsThenShaped
   }
 }
 
+// The shaper's design follows the spin readback within 0.1 %: a readback 0.05 % off the one
+// the design was made for keeps it (its first tap a of the old beta), one 0.5 % off redoes it.
+// Two components see the same readback when a gimbal reading appears (caged, body at rest:
+// the law's torque is the same for both); one had seen beta dt = pi/15 before, the other the
+// readback all along. The ratio of their first torques is a(old beta) / a(new beta) when the
+// design was kept and 1 when it was redone; a(beta) = 1 / (2 (1 - cos(8 beta dt))), beta = H / J.
+TEST(ComponentTorqueShaper, GivenASpinReadbackWithinATenthOfAPercentOfTheDesignsThenTheDesignIsKeptAndBeyondRedone) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.min_spin_hz = 10.0;
+  const double j = c.pitch_inertia;
+  const double beta_dt = kPi<double> / 15;  // taps 8 ticks apart, and still 8 at 0.5 % less
+  const double spin0 = beta_dt / c.tick_s * j / (2 * kPi<double> * c.spin_inertia);
+  const auto first_tap = [](double b_dt) { return 1 / (2 * (1 - std::cos(8 * b_dt))); };
+  for (const double change : {-5e-4, -5e-3}) {
+    SCOPED_TRACE(change);
+    const double spin1 = spin0 * (1 + change);
+    Bench before(c), along(c);
+    ASSERT_TRUE(before.ok && along.ok);
+    before.port.reading.spin_hz = spin0;
+    along.port.reading.spin_hz = spin1;
+    before.run(40);
+    along.run(40);
+    before.port.reading.spin_hz = spin1;
+    before.run(3);
+    along.run(3);
+    ASSERT_EQ(before.port.torque_written, Vector2<double>::Zero());
+    for (Bench* b : {&before, &along}) {
+      b->port.reading.gimbal_angle_rad = Vector2<double>(2e-3, 0.0);
+      ASSERT_EQ(b->step(), Status::kOk);
+    }
+    const double ratio = before.port.torque_written(1) / along.port.torque_written(1);
+    ASSERT_TRUE(std::isfinite(ratio)) << along.port.torque_written.transpose();
+    if (std::abs(change) < 1e-3) {
+      const double kept = first_tap(beta_dt) / first_tap(beta_dt * (1 + change));
+      ASSERT_GT(std::abs(kept - 1), 1e-4) << "the two designs differ";
+      EXPECT_NEAR(ratio, kept, 1e-9) << "kept: the first tap of the old beta";
+    } else {
+      EXPECT_NEAR(ratio, 1.0, 1e-12) << "redone at the readback";
+    }
+  }
+}
+
 // Safe mode writes zero torque at once and empties the shaper: leaving it starts from rest.
 // Here the fault latches while the cage loop is pulling (an input fault: a request no
 // enumerator has, every tick, with the readings still accepted), so the shaper's taps hold

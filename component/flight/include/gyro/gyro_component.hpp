@@ -39,7 +39,8 @@ class GyroComponent {
     config_ = config;
     estimator_ = est;
     cos_protect_ = std::cos(config.gimbal_cone_limit_rad - config.gimbal_stop_margin_rad);
-    nutation_spin_ = T(-1);  // the nutation and the shaper follow the new rotor
+    nutation_spin_low_ = T(-1);  // the nutation and the shaper follow the new rotor
+    nutation_spin_high_ = T(-2);
     configured_ = true;
     return c;
   }
@@ -226,8 +227,9 @@ class GyroComponent {
   }
 
   // Advances the estimator over the elapsed ticks with the torque held, compares with the
-  // accepted reading, and feeds a fraction of the residual back into the attitude. In safe
-  // mode the residual is not monitored (the estimator restarts when the gyro is caged again).
+  // accepted reading, and feeds a fraction of the residual back into the attitude (turned at
+  // the start of the next step, with its rotation). In safe mode the residual is not
+  // monitored (the estimator restarts when the gyro is caged again).
   void predict_and_check(std::uint64_t elapsed, T spin, bool measurable, std::uint32_t& flags) noexcept {
     if (!estimator_ready_) {
       if (measurable) estimator_ready_ = start_estimator();
@@ -254,7 +256,7 @@ class GyroComponent {
                                         config_.residual_persistence_ticks)) {
       flags |= kResidualFault;
     }
-    (void)estimator_.correct_gimbal_angles(Vector2<T>(config_.estimator_gain * residual_), attitude_);
+    (void)estimator_.correct_gimbal_angles_at_next_step(Vector2<T>(config_.estimator_gain * residual_));
   }
 
   // The persistence monitors (gyro/persistence.hpp); true when any fault condition has lasted
@@ -448,17 +450,23 @@ class GyroComponent {
     t.spin_hz = spin;
   }
 
-  // The nutation frequency at this spin (0 if the modes cannot be computed); kept for the
-  // last spin, as the spin readback rarely changes.
+  // The nutation frequency at this spin (0 if the modes cannot be computed), and the shaper
+  // designed for it: kept until the spin moves kShaperSpinTolerance away from the spin they
+  // were made for. A spinning-down rotor's readback changes every tick; the notch is not that
+  // narrow (a relative error e in beta lets through about 2 e of the nutation a step of torque
+  // excites, and the plant's own beta moves by more with the gimbal angles), so the design is
+  // redone every few hundred ticks of a spin-down, not every tick. (The estimator follows every
+  // readback: its transition is physics.)
   [[nodiscard]] T nutation_beta(T spin) noexcept {
-    if (!(spin == nutation_spin_)) {
+    if (!(spin >= nutation_spin_low_ && spin <= nutation_spin_high_)) {
       // The spin is finite and >= 0 and the inertias and friction were checked at configure():
       // the rate-matrix terms alone (compute_modes() without its checks and other modes).
       const RotorParameters<T> p{config_.pitch_inertia, config_.yaw_inertia, config_.friction,
                                  angular_momentum(spin, config_.spin_inertia)};
       const T beta_sq = detail::rate_matrix_terms(p).beta_sq;
       nutation_beta_ = (beta_sq > T(0) && std::isfinite(beta_sq)) ? std::sqrt(beta_sq) : T(0);
-      nutation_spin_ = spin;
+      nutation_spin_low_ = spin * (T(1) - kShaperSpinTolerance<T>);
+      nutation_spin_high_ = spin * (T(1) + kShaperSpinTolerance<T>);
       const T per_tick = nutation_beta_ * config_.tick_s;  // nutation phase a tick
       shaper_spacing_ = 0u;
       if (per_tick > T(0) && per_tick < kPi<T>) {
@@ -506,8 +514,12 @@ class GyroComponent {
   PersistenceMonitor torquer_monitor_{};
   PersistenceMonitor input_monitor_{};
   std::uint32_t settle_ticks_{0};
-  T nutation_spin_{-1};
+  T nutation_spin_low_{-1};  // the spins the shaper's design is kept for (nutation_beta)
+  T nutation_spin_high_{-2};
   T nutation_beta_{};
+  // The shaper's design follows the spin within this fraction (nutation_beta).
+  template <typename S>
+  static constexpr S kShaperSpinTolerance = S(1e-3);
   // The torque shaper (shape_torque): the torque law's last outputs (2 kShaperMaxSpacing + 1 read).
   static constexpr std::uint32_t kShaperMaxSpacing = 8;
   // A power of two of at least 2 kShaperMaxSpacing + 1 entries: the ring's index is masked (the

@@ -23,13 +23,11 @@ using Matrix3 = Eigen::Matrix<T, 3, 3>;
 template <typename T>
 using Quaternion = Eigen::Quaternion<T>;
 
-// The rotation of a step whose ISAF angles are (theta, psi): rotation vector (0, theta, psi)
-// in the gyro axes at the step's start. To first order this is the report's ROT matrix; here
-// it is exact, so the attitude stays a rotation however large the angles.
+namespace detail {
+// The rotation of rotation vector (roll, th, ps) in the gyro axes, as a unit quaternion.
 template <typename T>
-[[nodiscard]] Quaternion<T> step_rotation(const Vector2<T>& isaf_angle_rad) noexcept {
-  const T th = isaf_angle_rad(0), ps = isaf_angle_rad(1);
-  const T h2 = (th * th + ps * ps) / T(4);  // (half the rotation angle)^2
+[[nodiscard]] Quaternion<T> rotation_from_vector(T roll, T th, T ps) noexcept {
+  const T h2 = (roll * roll + th * th + ps * ps) / T(4);  // (half the rotation angle)^2
   constexpr T kSmall = ScalarTraits<T>::kSmallRotation / T(2);
   T c, s;  // cos(h) and sin(h)/(2h)
   if (h2 <= kSmall * kSmall) {
@@ -43,11 +41,32 @@ template <typename T>
   } else {
     // The squares overflowed (angles beyond 1e154 rad in double, 1e19 in float): the same
     // from the half angles without squaring, so the result is still a unit quaternion.
-    const T h = std::hypot(th / T(2), ps / T(2));
+    const T h = std::hypot(std::hypot(roll / T(2), th / T(2)), ps / T(2));
     c = std::cos(h);
     s = (std::sin(h) / h) / T(2);
   }
-  return Quaternion<T>(c, T(0), s * th, s * ps);
+  return Quaternion<T>(c, s * roll, s * th, s * ps);
+}
+}  // namespace detail
+
+// The rotation of a step whose ISAF angles are (theta, psi): rotation vector (0, theta, psi)
+// in the gyro axes at the step's start. To first order this is the report's ROT matrix; here
+// it is exact, so the attitude stays a rotation however large the angles.
+template <typename T>
+[[nodiscard]] Quaternion<T> step_rotation(const Vector2<T>& isaf_angle_rad) noexcept {
+  return detail::rotation_from_vector(T(0), isaf_angle_rad(0), isaf_angle_rad(1));
+}
+
+// A correction c turned just before a step a (both (pitch, yaw) rotation vectors on the same
+// gyro axes), as one rotation: R(c) R(a) has the rotation vector c + a + (c x a)/2 (the
+// Baker-Campbell-Hausdorff series), whose x part (c_th a_ps - c_ps a_th)/2 is the roll that
+// two turns about different transverse axes leave. The terms left out are third order, below
+// |a| |c| (|a| + |c|) / 12; with c = 0 this is step_rotation(a) exactly.
+template <typename T>
+[[nodiscard]] Quaternion<T> step_rotation(const Vector2<T>& isaf_angle_rad, const Vector2<T>& correction_rad) noexcept {
+  const Vector2<T>& a = isaf_angle_rad;
+  const Vector2<T>& c = correction_rad;
+  return detail::rotation_from_vector(T(0.5) * (c(0) * a(1) - c(1) * a(0)), c(0) + a(0), c(1) + a(1));
 }
 
 // Brings |q| back to 1 to first order without a square root: (3 - |q|^2)/2 ~ 1/|q| when

@@ -139,6 +139,7 @@ class GyroModel {
     configured_ = true;
     uncaged_ = false;
     cache_valid_ = false;
+    pending_correction_.setZero();
     return c;
   }
 
@@ -155,6 +156,7 @@ class GyroModel {
     q_gyro_to_earth_ = q;
     rate_rad_s_ = body_rate_rad_s;
     isaf_angle_rad_.setZero();
+    pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
     flags_ = gimbal_flag(gimbal_);
@@ -183,6 +185,7 @@ class GyroModel {
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
     rate_rad_s_ = times(frame().gimbal_to_gyro, body_rate_on_gimbal(frame(), body_rate_rad_s));
     isaf_angle_rad_.setZero();
+    pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
     flags_ = gimbal_flag(gimbal_);
@@ -273,7 +276,7 @@ class GyroModel {
 
     const Vector2<T> amplitude = nutation_amplitude(nutation_map_, rate_rad_s_, torque);
 
-    Quaternion<T> q = q_gyro_to_earth_ * step_rotation(s.angle_rad);
+    Quaternion<T> q = q_gyro_to_earth_ * step_rotation(s.angle_rad, pending_correction_);
     renormalize(q);
     const GimbalAngles<T> g = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q));
     if (!all_finite(g.pitch_rad, g.yaw_rad)) return Status::kNumericalOverflow;
@@ -285,6 +288,7 @@ class GyroModel {
     q_gyro_to_earth_ = q;
     rate_rad_s_ = s.rate_rad_s;
     isaf_angle_rad_ = s.angle_rad;
+    pending_correction_.setZero();
     nutation_amplitude_rad_ = amplitude;
     gimbal_ = g;
     angles_stale_ = false;
@@ -331,9 +335,21 @@ class GyroModel {
   template <typename Attitude>  // Matrix3<T> or CheckedRotation<T>
   [[nodiscard]] Status correct_gimbal_angles(const Vector2<T>& gimbal_rad, const Attitude& R_earth_to_body) noexcept {
     if (!all_finite(gimbal_rad)) return Status::kNonFiniteInput;
-    const Vector2<T> on_gimbal(gimbal_rad(0), gimbal_rad(1) * frame().cos_pitch);
-    return correct_attitude(times(frame().gimbal_to_gyro, on_gimbal), R_earth_to_body);
+    return correct_attitude(gyro_turn_for_gimbal(gimbal_rad), R_earth_to_body);
   }
+
+  // The same turn taken at the start of the next step instead of now, composed with that
+  // step's rotation: one rotation a step where an estimator correcting every step would make
+  // two. Until that step the attitude, the angles and the frame read do not include it; a
+  // second call before it adds to the first.
+  [[nodiscard]] Status correct_gimbal_angles_at_next_step(const Vector2<T>& gimbal_rad) noexcept {
+    if (!uncaged_) return Status::kNotConfigured;
+    if (!all_finite(gimbal_rad)) return Status::kNonFiniteInput;
+    pending_correction_ += gyro_turn_for_gimbal(gimbal_rad);
+    return Status::kOk;
+  }
+  // Gyro-axis (pitch, yaw) angles taken at the start of the next step (0 when none).
+  [[nodiscard]] const Vector2<T>& pending_correction_rad() const noexcept { return pending_correction_; }
 
   [[nodiscard]] const Quaternion<T>& attitude_gyro_to_earth() const noexcept { return q_gyro_to_earth_; }
   [[nodiscard]] Matrix3<T> R_earth_to_gyro() const noexcept {
@@ -373,6 +389,13 @@ class GyroModel {
   }
 
  private:
+  // The turn of the gyro's axes (pitch, yaw) that changes the gimbal angles by `gimbal_rad`:
+  // pitch about y_I, yaw times cos th about z_I, resolved with the last step's frame.
+  [[nodiscard]] Vector2<T> gyro_turn_for_gimbal(const Vector2<T>& gimbal_rad) const noexcept {
+    const Vector2<T> on_gimbal(gimbal_rad(0), gimbal_rad(1) * frame().cos_pitch);
+    return times(frame().gimbal_to_gyro, on_gimbal);
+  }
+
   // The gimbal angles and their flag, read again after a correction (lazily: a correction
   // followed by a step never reads them twice).
   const GimbalAngles<T>& refresh_angles() const noexcept {
@@ -445,6 +468,7 @@ class GyroModel {
   Quaternion<T> q_gyro_to_earth_{Quaternion<T>::Identity()};
   Vector2<T> rate_rad_s_{Vector2<T>::Zero()};
   Vector2<T> isaf_angle_rad_{Vector2<T>::Zero()};
+  Vector2<T> pending_correction_{Vector2<T>::Zero()};  // turned at the next step's start
   Vector2<T> nutation_amplitude_rad_{Vector2<T>::Zero()};
   Vector2<T> applied_torque_{Vector2<T>::Zero()};
   mutable GimbalAngles<T> gimbal_{};  // read lazily after a correction (refresh_angles)

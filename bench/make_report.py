@@ -418,8 +418,9 @@ def model_section(res):
         first = smp[0][1] if smp and smp[0][0] == 1 else None
         if rest:
             mid = statistics.median(rest)
-            notes.append(f"{t}: ticks differ by up to {100 * (max(rest) - min(rest)) / mid:.1f} % "
-                         f"(libm's atan2 and hypot take different paths with the gimbal geometry)"
+            spread_pct = 100 * (max(rest) - min(rest)) / mid
+            notes.append((f"{t}: ticks differ by up to {spread_pct:.1f} %" if spread_pct > 0
+                          else f"{t}: every tick after the first costs the same")
                          + (f", and the first tick costs {first - mid:.0f} more, for make_transition; "
                             f"so does every tick whose spin rate or dt differs from the last one's"
                             if first else ""))
@@ -429,7 +430,7 @@ def model_section(res):
     text += ("\n\nThe sampled ticks include about 20 instructions of the sampling itself (the "
              "callgrind client requests around the tick).")
     if notes:
-        text += "\n\nNot the same cost every tick: " + "; ".join(notes) + "."
+        text += "\n\nFrom tick to tick: " + "; ".join(notes) + "."
     prof = model_profile(res, "double")
     if prof:
         text += "\n\nWhere the double tick goes (callgrind, self cost, mean over 20 000 ticks):\n\n" + prof
@@ -442,10 +443,9 @@ def model_section(res):
         text += (f"\n\nThe exact dynamics (`advance` with its checks, {adv:.0f}) are {100 * adv / mean_d:.0f} % "
                  f"of the double tick. ")
         if per_param:
-            text += (f"The nutation amplitude's chain (validate, rate-matrix terms, steady precession) is "
-                     f"recomputed from the parameters every tick, about {per_param:.0f} instructions "
-                     f"({100 * per_param / mean_d:.0f} %), though it changes only when H does, like the cached "
-                     f"transition. ")
+            text += (f"The nutation amplitude (its map built with the transition, when H changes; per step "
+                     f"three 2x2 products and two square roots) costs about {per_param:.0f} instructions "
+                     f"({100 * per_param / mean_d:.0f} %). ")
         if rot:
             text += (f"Checking that the body's rotation matrix is orthonormal costs about {rot:.0f} "
                      f"({100 * rot / mean_d:.0f} %). ")

@@ -71,6 +71,7 @@ class GyroComponent {
     const Reading r = read_and_validate(elapsed, flags);
     const T spin = spin_hz(r);
     if (spin < config_.min_spin_hz) flags |= kSpinLow;
+    follow_nutation(spin);
 
     predict_and_check(elapsed, spin, r.accepted && nav_ok, flags);
     const bool fault_now = update_monitors(r.accepted, input_bad, flags);
@@ -78,7 +79,7 @@ class GyroComponent {
 
     const GimbalFrame<T>& frame = frame_now();
     const Vector2<T> rate_cmd = rate_command(frame, nav_ok, r.accepted, flags);
-    const Vector2<T> torque = shape_torque(torque_command(frame, rate_cmd, spin, nav_ok, flags), spin);
+    const Vector2<T> torque = shape_torque(torque_command(frame, rate_cmd, spin, nav_ok, flags));
     if (port_.write_torquer(torque) == PortStatus::kOk) {
       torque_held_ = torque;
       torquer_fail_ = false;
@@ -395,14 +396,14 @@ class GyroComponent {
   // m the fewest ticks with m beta dt >= pi/2 (so all taps are >= 0 and the torque never
   // exceeds the law's largest), m ticks of delay: a step excites no nutation at beta. Off when
   // the tick aliases the nutation or m would pass kShaperMaxSpacing; safe mode cuts at once.
-  [[nodiscard]] Vector2<T> shape_torque(const Vector2<T>& wanted, T spin) noexcept {
+  [[nodiscard]] Vector2<T> shape_torque(const Vector2<T>& wanted) noexcept {
     if (mode_ == GyroMode::kFault) {
       wanted_history_.fill(Vector2<T>::Zero());  // leaving safe mode starts from rest
       return wanted;
     }
     wanted_head_ = (wanted_head_ + 1u) & kShaperMask;
     wanted_history_[wanted_head_] = wanted;
-    if (nutation_beta(spin) <= T(0) || shaper_spacing_ == 0u) return wanted;
+    if (shaper_spacing_ == 0u) return wanted;
     const Vector2<T>& mid = wanted_history_[(wanted_head_ - shaper_spacing_) & kShaperMask];
     const Vector2<T>& old = wanted_history_[(wanted_head_ - 2u * shaper_spacing_) & kShaperMask];
     // Written about the middle tap (equal taps give it back exactly); rounding can still pass
@@ -433,7 +434,7 @@ class GyroComponent {
   }
 
   void publish(std::uint64_t tick, std::uint32_t flags, const Vector2<T>& rate_cmd, T spin) noexcept {
-    if (estimator_ready_ && nutation_unresolved(spin)) flags |= kNutationUnresolved;
+    if (estimator_ready_ && nutation_aliased_) flags |= kNutationUnresolved;
     GyroTelemetry<T>& t = telemetry_;
     t.tick = tick;
     t.mode = mode_;
@@ -450,14 +451,14 @@ class GyroComponent {
     t.spin_hz = spin;
   }
 
-  // The nutation frequency at this spin (0 if the modes cannot be computed), and the shaper
-  // designed for it: kept until the spin moves kShaperSpinTolerance away from the spin they
+  // Once per tick: the nutation frequency at this spin (0 if the modes cannot be computed),
+  // whether the tick aliases it, and the shaper designed for it: kept until the spin moves kShaperSpinTolerance away from the spin they
   // were made for. A spinning-down rotor's readback changes every tick; the notch is not that
   // narrow (a relative error e in beta lets through about 2 e of the nutation a step of torque
   // excites, and the plant's own beta moves by more with the gimbal angles), so the design is
   // redone every few hundred ticks of a spin-down, not every tick. (The estimator follows every
   // readback: its transition is physics.)
-  [[nodiscard]] T nutation_beta(T spin) noexcept {
+  void follow_nutation(T spin) noexcept {
     if (!(spin >= nutation_spin_low_ && spin <= nutation_spin_high_)) {
       // The spin is finite and >= 0 and the inertias and friction were checked at configure():
       // the rate-matrix terms alone (compute_modes() without its checks and other modes).
@@ -468,6 +469,8 @@ class GyroComponent {
       nutation_spin_low_ = spin * (T(1) - kShaperSpinTolerance<T>);
       nutation_spin_high_ = spin * (T(1) + kShaperSpinTolerance<T>);
       const T per_tick = nutation_beta_ * config_.tick_s;  // nutation phase a tick
+      // Fewer than two ticks per nutation period: the pickoffs alias the nutation.
+      nutation_aliased_ = per_tick > kPi<T>;
       shaper_spacing_ = 0u;
       if (per_tick > T(0) && per_tick < kPi<T>) {
         const T spacing = std::ceil(kPi<T> / (T(2) * per_tick));
@@ -477,11 +480,7 @@ class GyroComponent {
         }
       }
     }
-    return nutation_beta_;
   }
-
-  // Fewer than two ticks per nutation period: the pickoffs alias the nutation.
-  [[nodiscard]] bool nutation_unresolved(T spin) noexcept { return nutation_beta(spin) * config_.tick_s > kPi<T>; }
 
   GyroPort<T>& port_;
   GyroComponentConfig<T> config_{};
@@ -514,10 +513,11 @@ class GyroComponent {
   PersistenceMonitor torquer_monitor_{};
   PersistenceMonitor input_monitor_{};
   std::uint32_t settle_ticks_{0};
-  T nutation_spin_low_{-1};  // the spins the shaper's design is kept for (nutation_beta)
+  T nutation_spin_low_{-1};  // the spins the shaper's design is kept for (follow_nutation)
   T nutation_spin_high_{-2};
   T nutation_beta_{};
-  // The shaper's design follows the spin within this fraction (nutation_beta).
+  bool nutation_aliased_{false};
+  // The shaper's design follows the spin within this fraction (follow_nutation).
   template <typename S>
   static constexpr S kShaperSpinTolerance = S(1e-3);
   // The torque shaper (shape_torque): the torque law's last outputs (2 kShaperMaxSpacing + 1 read).

@@ -113,10 +113,13 @@ template <typename T>
   return Vector2<T>(torquer(0), torquer(1) / f.cos_pitch);
 }
 
-// The body's angular velocity across the spin axis, on (y_I, z_I).
+// The body's angular velocity across the spin axis, on (y_I, z_I) (y_I has no body z part).
 template <typename T>
 [[nodiscard]] Vector2<T> body_rate_on_gimbal(const GimbalFrame<T>& f, const Vector3<T>& body_rate_rad_s) noexcept {
-  return Vector2<T>(f.y_inner_body.dot(body_rate_rad_s), f.z_inner_body.dot(body_rate_rad_s));
+  const Vector3<T>& w = body_rate_rad_s;
+  const Vector3<T>& y = f.y_inner_body;
+  const Vector3<T>& z = f.z_inner_body;
+  return Vector2<T>(y(0) * w(0) + y(1) * w(1), z(0) * w(0) + z(1) * w(1) + z(2) * w(2));
 }
 
 // The inner gimbal's angular velocity about the spin axis (what a spin motor holding the

@@ -160,7 +160,6 @@ class GyroModel {
     nutation_amplitude_rad_.setZero();
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
     flags_ = gimbal_flag(gimbal_);
-    R_earth_to_body_ = R_earth_to_body;
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
     uncaged_ = true;
     have_frame_roll_ = false;
@@ -181,7 +180,6 @@ class GyroModel {
     Quaternion<T> q = q_body * yaw * pitch;
     q.normalize();
     q_gyro_to_earth_ = q;
-    R_earth_to_body_ = R_earth_to_body;
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
     rate_rad_s_ = times(frame().gimbal_to_gyro, body_rate_on_gimbal(frame(), body_rate_rad_s));
     isaf_angle_rad_.setZero();
@@ -294,7 +292,6 @@ class GyroModel {
     angles_stale_ = false;
     flags_ = step_flags;
     applied_torque_ = torque;
-    R_earth_to_body_ = R_earth_to_body;
     if (on_gimbal) frame_index_ ^= 1u;
     frame_roll_ = frame_roll;
     have_frame_roll_ = true;
@@ -476,7 +473,7 @@ class GyroModel {
   mutable bool angles_stale_{false};
   bool drift_needs_angles_{false};
   bool has_error_sources_{false};
-  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};  // body at the start of the next step
+  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};  // the last correction's body (refresh_angles)
   // The gimbal frame at the end of the last step, and a spare the next step writes its end
   // frame into (kept only if the step succeeds: no copy of the frame per step).
   std::array<GimbalFrame<T>, 2> frames_{};

@@ -142,5 +142,43 @@ TEST(GimbalFrameTwist, GivenAGyroRolledOnItsGimbalThenTheTwistIsTheDotProductsOf
   }
 }
 
+// The rotation check at its tolerance: rows 0 and 1 unit and orthogonal, row 2 their cross
+// product, each within kRotationTolerance. A rotation whose entries move by half the tolerance
+// passes (and is then within 3 tolerances of orthonormal, R R^T - I); one whose last row moves
+// by twice the tolerance, whose first row is 2 tolerances too long, or whose last row is turned
+// over (a reflection: det -1) does not.
+template <typename T>
+void check_rotation_tolerance() {
+  const T tol = ScalarTraits<T>::kRotationTolerance;
+  const Matrix3<T> r =
+      Eigen::AngleAxis<T>(T(0.9), Vector3<T>(T(1), T(-2), T(0.5)).normalized()).toRotationMatrix();
+  ASSERT_TRUE(is_rotation(r));
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      SCOPED_TRACE(testing::Message() << "entry " << i << ", " << j);
+      Matrix3<T> m = r;
+      m(i, j) += tol / T(4);
+      EXPECT_TRUE(is_rotation(m));
+      EXPECT_LE(orthonormality_error(m), T(3) * tol);
+      if (i == 2) {
+        m(2, j) = r(2, j) + T(2) * tol;
+        EXPECT_FALSE(is_rotation(m)) << "the last row off the cross product";
+      }
+    }
+  }
+  Matrix3<T> longer = r;
+  longer.row(0) *= T(1) + T(2) * tol;
+  EXPECT_FALSE(is_rotation(longer)) << "a first row 2 tolerances too long";
+  Matrix3<T> reflection = r;
+  reflection.row(2) *= T(-1);
+  EXPECT_FALSE(is_rotation(reflection));
+  EXPECT_FALSE(is_rotation(Matrix3<T>(-r))) << "det -1";
+}
+
+TEST(RotationCheck, GivenARotationMovedWithinAndBeyondTheToleranceThenAcceptedAndRefused) {
+  check_rotation_tolerance<double>();
+  check_rotation_tolerance<float>();
+}
+
 }  // namespace
 }  // namespace gyro

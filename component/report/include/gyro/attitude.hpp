@@ -105,23 +105,22 @@ template <typename T>
   return g;
 }
 
-// True when R is finite and orthonormal within the scalar type's tolerance, with determinant
-// +1. R R^T is symmetric: six row dot products; the sign of row0 x row1 . row2 is det R. Every
-// test is false on a NaN and an infinite entry makes a row's norm infinite, so non-finite
-// entries fail without a test of their own; no branch per test.
+// True when R is finite and a rotation within the scalar type's tolerance: its first two rows
+// unit and orthogonal, its last their cross product (so R R^T - I is within a few times the
+// tolerance and det R = +1: a reflection's last row is minus the cross product). Every test is
+// false on a NaN, and an infinite entry makes a norm or a difference infinite or NaN, so
+// non-finite entries fail without a test of their own; no branch per test.
 template <typename T>
 [[nodiscard]] bool is_rotation(const Matrix3<T>& r) noexcept {
   const T a0 = r(0, 0), a1 = r(0, 1), a2 = r(0, 2);
   const T b0 = r(1, 0), b1 = r(1, 1), b2 = r(1, 2);
-  const T c0 = r(2, 0), c1 = r(2, 1), c2 = r(2, 2);
   const T tol = ScalarTraits<T>::kRotationTolerance;
   const auto within = [tol](T e) noexcept { return static_cast<unsigned>(std::abs(e) <= tol); };
-  const unsigned unit = within(a0 * a0 + a1 * a1 + a2 * a2 - T(1)) & within(b0 * b0 + b1 * b1 + b2 * b2 - T(1)) &
-                        within(c0 * c0 + c1 * c1 + c2 * c2 - T(1));
-  const unsigned orthogonal = within(a0 * b0 + a1 * b1 + a2 * b2) & within(a0 * c0 + a1 * c1 + a2 * c2) &
-                              within(b0 * c0 + b1 * c1 + b2 * c2);
-  const T det = (a1 * b2 - a2 * b1) * c0 + (a2 * b0 - a0 * b2) * c1 + (a0 * b1 - a1 * b0) * c2;
-  return (unit & orthogonal & static_cast<unsigned>(det > T(0))) != 0u;
+  const unsigned orthonormal = within(a0 * a0 + a1 * a1 + a2 * a2 - T(1)) &
+                               within(b0 * b0 + b1 * b1 + b2 * b2 - T(1)) & within(a0 * b0 + a1 * b1 + a2 * b2);
+  const unsigned last_row = within(r(2, 0) - (a1 * b2 - a2 * b1)) & within(r(2, 1) - (a2 * b0 - a0 * b2)) &
+                            within(r(2, 2) - (a0 * b1 - a1 * b0));
+  return (orthonormal & last_row) != 0u;
 }
 
 // Largest entry of R R^T - I: how far a matrix has drifted from a rotation.

@@ -575,6 +575,28 @@ TEST(GyroModelCorrection, GivenAGimbalCorrectionOffThePitchZeroThenEachAngleMove
   }
 }
 
+// A correction followed by a new uncaging: the angles read are those of the new uncaging, as
+// if the correction had never been made (it turned an attitude that uncaging replaced, against
+// the body of its own time).
+TEST(GyroModelCorrection, GivenACorrectionThenAnUncagingOnAnotherBodyThenTheAnglesAreTheUncagingsOwn) {
+  const GyroModelConfig<double> c = ReportSample<double>::config();
+  const Matrix3<double> first = Eigen::AngleAxisd(0.3, Vector3<double>(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Matrix3<double> second = Eigen::AngleAxisd(-0.8, Vector3<double>(0.2, 1, -1).normalized()).toRotationMatrix();
+  GyroModel<double> corrected, fresh;
+  ASSERT_TRUE(corrected.configure(c).ok() && fresh.configure(c).ok());
+  ASSERT_EQ(corrected.uncage(first, Vector2<double>::Zero(), Vector2<double>(0.1, -0.2)), Status::kOk);
+  ASSERT_EQ(corrected.correct_attitude(Vector2<double>(0.05, 0.02), first), Status::kOk);
+  ASSERT_EQ(corrected.uncage(second, Vector2<double>::Zero(), Vector2<double>(-0.1, 0.15)), Status::kOk);
+  ASSERT_EQ(fresh.uncage(second, Vector2<double>::Zero(), Vector2<double>(-0.1, 0.15)), Status::kOk);
+  EXPECT_EQ(corrected.gimbal_pitch_rad(), fresh.gimbal_pitch_rad());
+  EXPECT_EQ(corrected.gimbal_yaw_rad(), fresh.gimbal_yaw_rad());
+  ASSERT_EQ(corrected.uncage_on_gimbal(first, Vector3<double>::Zero(), Vector2<double>(0.2, 0.1)), Status::kOk);
+  ASSERT_EQ(corrected.correct_attitude(Vector2<double>(0.05, 0.02), first), Status::kOk);
+  ASSERT_EQ(corrected.uncage_on_gimbal(second, Vector3<double>::Zero(), Vector2<double>(0.3, -0.2)), Status::kOk);
+  EXPECT_NEAR(corrected.gimbal_pitch_rad(), 0.3, 1e-12);
+  EXPECT_NEAR(corrected.gimbal_yaw_rad(), -0.2, 1e-12);
+}
+
 // A correction taken at the next step is the same turn as one taken now followed by the
 // step: R(c) R(a) = R(c + a + (c x a) / 2 + third order). The reference is the product of the
 // two exact rotations; the roll term (c x a) / 2 is what makes them agree: without it the

@@ -452,12 +452,13 @@ class GyroComponent {
   }
 
   // Once per tick: the nutation frequency at this spin (0 if the modes cannot be computed),
-  // whether the tick aliases it, and the shaper designed for it: kept until the spin moves kShaperSpinTolerance away from the spin they
-  // were made for. A spinning-down rotor's readback changes every tick; the notch is not that
-  // narrow (a relative error e in beta lets through about 2 e of the nutation a step of torque
-  // excites, and the plant's own beta moves by more with the gimbal angles), so the design is
-  // redone every few hundred ticks of a spin-down, not every tick. (The estimator follows every
-  // readback: its transition is physics.)
+  // whether the tick aliases it, and the shaper designed for it, all kept until the spin moves
+  // kShaperSpinTolerance away from the spin they were made for. A spinning-down rotor's
+  // readback changes every tick; the notch is not that narrow (a relative error e in beta lets
+  // through about 2 e of the nutation a step of torque excites, and the plant's own beta moves
+  // by more with the gimbal angles), so the design is redone every few hundred ticks of a
+  // spin-down, not every tick. (The estimator follows every readback: its transition is
+  // physics.)
   void follow_nutation(T spin) noexcept {
     if (!(spin >= nutation_spin_low_ && spin <= nutation_spin_high_)) {
       // The spin is finite and >= 0 and the inertias and friction were checked at configure():

@@ -159,6 +159,7 @@ class GyroModel {
     pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
+    angles_stale_ = false;  // read just now (a correction before uncaging is gone)
     flags_ = gimbal_flag(gimbal_);
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
     uncaged_ = true;
@@ -186,6 +187,7 @@ class GyroModel {
     pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
+    angles_stale_ = false;  // read just now (a correction before uncaging is gone)
     flags_ = gimbal_flag(gimbal_);
     uncaged_ = true;
     have_frame_roll_ = false;

@@ -430,6 +430,10 @@ void parse_gimbal(const Reader& r, SimulatedGyroConfig<double>& c) {
   g.max_torque = 1e3;
   g.max_specific_force = 1e4;
   read_fields(r, g, nullptr);
+  // Optional in the table (a free rotor has no motor), required by the default drive.
+  if (g.spin_drive == SpinDrive::kMotor && !r.has("motor_torque_limit")) {
+    r.fail("motor_torque_limit", "missing required field (needed by spin_drive \"motor\", the default)");
+  }
 }
 
 void parse_gyro(const Reader& g, const RunSpec& run, Scenario& s) {

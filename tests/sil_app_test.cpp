@@ -362,6 +362,8 @@ TEST(SilBadScenarios, GivenEachMalformedScenarioThenItIsRefusedNamingFileFieldAn
       {"gimbal_with_report_errors.json", {"gyro.errors", "belong to plant \"report\""}},
       {"bad_plant.json", {"gyro.plant", "expected \"gimbal\" or \"report\", got \"gimbals\""}},
       {"gimbal_negative_inertia.json", {"gyro.gimbal.outer_gimbal_inertia", "refused by SimulatedGyro::configure"}},
+      {"gimbal_motor_without_limit.json",
+       {"gyro.gimbal.motor_torque_limit", "missing required field (needed by spin_drive \"motor\", the default)"}},
       {"gimbal_roll_with_pitch_then_yaw.json", {"body.rate_rad_s", "has no roll: p must be 0"}},
       {"gimbal_body_rate_beyond_plant.json", {"body.rate_rad_s[0]", "more than gyro.gimbal.max_body_rate_rad_s (100)"}},
       {"gimbal_force_beyond_plant.json", {"body.specific_force[0]", "more than gyro.gimbal.max_specific_force"}},

@@ -142,6 +142,38 @@ TEST(GimbalFrameTwist, GivenAGyroRolledOnItsGimbalThenTheTwistIsTheDotProductsOf
   }
 }
 
+// The torque at a frame moved by a pitch change and an inner-gimbal roll, against the torque at
+// the frame built exactly at the moved angles: the error is third order (halving the move
+// divides it by about 8; a sign or a missing second-order term would leave a ratio of 2 or 4).
+TEST(GimbalFrameMoved, GivenAPitchChangeAndARollThenTheTorqueIsTheMovedFramesToThirdOrder) {
+  const auto frame_of = [](double pitch, double gyro_roll) {
+    return gimbal_frame(Matrix3<double>((Eigen::AngleAxis<double>(0.6, Vector3<double>::UnitZ()) *
+                                         Eigen::AngleAxis<double>(pitch, Vector3<double>::UnitY()) *
+                                         Eigen::AngleAxis<double>(gyro_roll, Vector3<double>::UnitX()))
+                                            .toRotationMatrix()));
+  };
+  const Vector2<double> torquer(0.03, -0.08);
+  for (const double pitch : {0.0, 0.5, -1.2}) {
+    for (const double gyro_roll : {0.0, 0.4, -2.5}) {
+      for (const double sign : {1.0, -1.0}) {
+        SCOPED_TRACE(testing::Message() << pitch << " " << gyro_roll << " " << sign);
+        const GimbalFrame<double> start = frame_of(pitch, gyro_roll);
+        const auto error = [&](double h) {
+          // The inner gimbal rolling by roll against the gyro's axes: the gyro's roll on it falls.
+          const double dth = sign * h, roll = -2.0 * h;
+          const GimbalFrame<double> moved = frame_of(pitch + dth, gyro_roll - roll);
+          const Vector2<double> exact = times(moved.gimbal_to_gyro, rotor_torque_from_torquers(moved, torquer));
+          return (rotor_torque_on_gyro_axes_moved(start, torquer, dth, roll) - exact).norm();
+        };
+        const double e1 = error(1e-2), e2 = error(5e-3);
+        EXPECT_LT(e1, 2e-6 * torquer.norm() / std::cos(pitch));
+        EXPECT_GT(e1 / e2, 6.5) << e1 << " " << e2;
+        EXPECT_LT(e1 / e2, 9.5) << e1 << " " << e2;
+      }
+    }
+  }
+}
+
 // The rotation check at its tolerance: rows 0 and 1 unit and orthogonal, row 2 their cross
 // product, each within kRotationTolerance. A rotation whose entries move by half the tolerance
 // passes (and is then within 3 tolerances of orthonormal, R R^T - I); one whose last row moves

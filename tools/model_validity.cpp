@@ -124,10 +124,12 @@ caged the body, asked more than the component may fly).
 - The report's model is off by 1e-3 to 0.4 rad within a second without roll (friction on the
   inertial rates, torques on axes that are not the gimbal's), and by tenths of a radian as
   soon as the body rolls (its torquer axes never roll). The corrected model stays within
-  2.3e-4 rad inside the envelope and 4.8e-4 rad over the whole grid: what is left is the
-  gimbal rings' inertia and the held torque's picture of axes that turn within a tick.
+  2.8e-4 rad inside the envelope, and within 5e-5 rad without roll (1e-14 at a centred spin
+  axis); over the whole grid the worst is 3.3e-3 rad, at a 25 deg cone and 20 rad/s of roll:
+  what is left grows with roll and cone, the gimbal rings' inertia (which the model does not
+  carry) and the torque held over a tick in which its axes turn.
 - The component's residual stays under 1e-4 rad inside the envelope from the uncaging
-  request on, transients included (worst 8.7e-5 rad at a 20 deg cone, 1 rad/s of turn,
+  request on, transients included (worst 8.6e-5 rad at a 20 deg cone, 1 rad/s of turn,
   10 rad/s of roll, in the steady slew), and under 5e-4 rad over the whole grid wherever the
   gimbal stays off its stop. Two things make the transients as small as the steady state:
   the torque shaper (docs/component.md, "Torque shaping against nutation"), without which a
@@ -150,7 +152,7 @@ caged the body, asked more than the component may fly).
   flags it (`slew_rate_limited`, R) from the first such tick; with little roll the gimbal
   then drifts onto the stop: the component flags the gimbal limit 90-1,030 ticks before the
   stop, never commands toward the stop (it withholds outward commands near it) and latches
-  a residual fault 20-31 ticks after the plant hits it (the table below). Fast roll turns
+  a residual fault 21-32 ticks after the plant hits it (the table below). Fast roll turns
   the body's rate across the spin axis round the gimbal axes and averages it out: from
   5 rad/s of roll on, these cases follow.
 )";

@@ -91,18 +91,24 @@ struct GimbalAngles {
   T cosine_of_cone{1};  // cos of the total angle between spin axis and body x
 };
 
-// Gimbal angles from the spin axis in body axes (the report's GP vector). The listing's GIMBY
-// and GIMBZ are the negatives of these (see docs/seed-errata.md).
+// Gimbal angles from the spin axis in body axes (the report's GP vector), or from the spin
+// axis in earth axes and the body's attitude. The listing's GIMBY and GIMBZ are the
+// negatives of these (see docs/seed-errata.md).
 template <typename T>
-[[nodiscard]] GimbalAngles<T> gimbal_angles(const Matrix3<T>& R_earth_to_body,
-                                            const Vector3<T>& spin_axis_earth) noexcept {
-  Vector3<T> gp;
-  gp.noalias() = R_earth_to_body * spin_axis_earth;
+[[nodiscard]] GimbalAngles<T> gimbal_angles(const Vector3<T>& spin_axis_body) noexcept {
+  const Vector3<T>& gp = spin_axis_body;
   GimbalAngles<T> g;
   g.pitch_rad = fixed_cost_atan2(-gp(2), std::sqrt(gp(0) * gp(0) + gp(1) * gp(1)));  // |gp| = 1
   g.yaw_rad = fixed_cost_atan2(gp(1), gp(0));
   g.cosine_of_cone = gp(0);
   return g;
+}
+template <typename T>
+[[nodiscard]] GimbalAngles<T> gimbal_angles(const Matrix3<T>& R_earth_to_body,
+                                            const Vector3<T>& spin_axis_earth) noexcept {
+  Vector3<T> gp;
+  gp.noalias() = R_earth_to_body * spin_axis_earth;
+  return gimbal_angles(gp);
 }
 
 // True when R is finite and a rotation within the scalar type's tolerance: its first two rows

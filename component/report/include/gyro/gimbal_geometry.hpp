@@ -113,6 +113,22 @@ template <typename T>
   return Vector2<T>(torquer(0), torquer(1) / f.cos_pitch);
 }
 
+// The same on the gyro's axes, with the frame moved from `f` by a gimbal pitch change `dth`
+// and a roll `roll` of the inner gimbal about the spin axis against the gyro's axes (which
+// never roll): second order in both, for the middle of a step. With gimbal_to_gyro
+// [c s; -s c] = [cos tau, -sin tau; sin tau, cos tau], tau the roll of y_I from y_g, the roll
+// adds to tau.
+template <typename T>
+[[nodiscard]] Vector2<T> rotor_torque_on_gyro_axes_moved(const GimbalFrame<T>& f, const Vector2<T>& torquer, T dth,
+                                                         T roll) noexcept {
+  const T half_dth_sq = T(0.5) * dth * dth, half_roll_sq = T(0.5) * roll * roll;
+  const T cos_pitch = f.cos_pitch - half_dth_sq * f.cos_pitch - dth * f.sin_pitch;
+  const Vector2<T> t(torquer(0), torquer(1) / std::max(cos_pitch, kMinCosPitch<T>));
+  const T c0 = f.gimbal_to_gyro(0, 0), s0 = f.gimbal_to_gyro(0, 1);
+  const T c = c0 - half_roll_sq * c0 + roll * s0, s = s0 - half_roll_sq * s0 - roll * c0;
+  return Vector2<T>(c * t(0) + s * t(1), c * t(1) - s * t(0));
+}
+
 // The body's angular velocity across the spin axis, on (y_I, z_I) (y_I has no body z part).
 template <typename T>
 [[nodiscard]] Vector2<T> body_rate_on_gimbal(const GimbalFrame<T>& f, const Vector3<T>& body_rate_rad_s) noexcept {

@@ -158,10 +158,10 @@ class GyroModel {
     isaf_angle_rad_.setZero();
     pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
-    gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
+    gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
+    gimbal_ = gimbal_angles(frame().spin_axis_body);
     angles_stale_ = false;  // read just now (a correction before uncaging is gone)
     flags_ = gimbal_flag(gimbal_);
-    gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
     uncaged_ = true;
     have_frame_roll_ = false;
     return Status::kOk;
@@ -186,7 +186,7 @@ class GyroModel {
     isaf_angle_rad_.setZero();
     pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
-    gimbal_ = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q_gyro_to_earth_));
+    gimbal_ = gimbal_angles(frame().spin_axis_body);
     angles_stale_ = false;  // read just now (a correction before uncaging is gone)
     flags_ = gimbal_flag(gimbal_);
     uncaged_ = true;
@@ -255,12 +255,9 @@ class GyroModel {
       cache_valid_ = true;
     }
 
-    // kGimbal: the frame at the step's end goes to the spare buffer, taken on success.
     const bool on_gimbal = config_.torquer_axes == TorquerAxes::kGimbal;
     T frame_roll{};
-    const Vector2<T> rotor_torque =
-        on_gimbal ? torque_on_gyro_axes(in, R_earth_to_body, torque_cmd, frames_[frame_index_ ^ 1u], frame_roll)
-                  : torque_cmd;
+    const Vector2<T> rotor_torque = on_gimbal ? torque_on_gyro_axes(in, torque_cmd, frame_roll) : torque_cmd;
     // The error sources as torques (none configured: the torquers' alone, as the sums below
     // would give with every coefficient zero).
     const Vector2<T> torque = has_error_sources_ ? with_error_sources(in, rotor_torque, prm.angular_momentum)
@@ -278,7 +275,16 @@ class GyroModel {
 
     Quaternion<T> q = q_gyro_to_earth_ * step_rotation(s.angle_rad, pending_correction_);
     renormalize(q);
-    const GimbalAngles<T> g = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q));
+    GimbalAngles<T> g;
+    if (on_gimbal) {
+      // The frame at the step's end (the next one's start) goes to the spare buffer, taken on
+      // success; the angles come from its spin axis.
+      GimbalFrame<T>& end = frames_[frame_index_ ^ 1u];
+      gimbal_frame(R_earth_to_body, q, end);
+      g = gimbal_angles(end.spin_axis_body);
+    } else {
+      g = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q));
+    }
     if (!all_finite(g.pitch_rad, g.yaw_rad)) return Status::kNumericalOverflow;
 
     std::uint32_t step_flags = gimbal_flag(g);
@@ -407,23 +413,23 @@ class GyroModel {
   }
 
   // kGimbal: the torquers' and bearings' torque on the rotor, on the gyro's axes. The torquer
-  // axes turn with the body over the step: the mean of their two ends is held (second order
-  // in the step). The friction correction moves the model's f w onto the gimbal rates. The
-  // spin motor holds the spin relative to the inner gimbal, which rolls about the spin axis
-  // at `frame_roll`: the rotor's momentum is H + J0 frame_roll. The motor's reaction as it
-  // follows frame_roll is not carried: it is a derivative of estimated rates, and with real
-  // pickoff noise it cost more than it gave (docs/gimbal-geometry.md, "Spin motor").
-  // `end_frame` receives the frame at the end of the step (spin axis of its start).
-  [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Matrix3<T>& R_earth_to_body,
-                                               const Vector2<T>& torquer, GimbalFrame<T>& end_frame,
+  // axes turn over the step (the body rolls them about the spin axis, the gimbal pitch
+  // changes the outer torquer's lever): the torque is held at the frame of the step's middle,
+  // moved from its start by the gimbal rates there (second order in the step). The friction
+  // correction moves the model's f w onto the gimbal rates. The spin motor holds the spin
+  // relative to the inner gimbal, which rolls about the spin axis at `frame_roll`: the rotor's
+  // momentum is H + J0 frame_roll. The motor's reaction as it follows frame_roll is not
+  // carried: it is a derivative of estimated rates, and with real pickoff noise it cost more
+  // than it gave (docs/gimbal-geometry.md, "Spin motor").
+  [[nodiscard]] Vector2<T> torque_on_gyro_axes(const GyroStepInput<T>& in, const Vector2<T>& torquer,
                                                T& frame_roll) const noexcept {
-    const GimbalFrame<T>& start = frame();  // the last step's end (its spin axis: within a tick's turn)
-    gimbal_frame(R_earth_to_body, q_gyro_to_earth_, end_frame);
+    const GimbalFrame<T>& start = frame();  // the last step's end
     const Vector2<T> rate_on_gimbal = transpose_times(start.gimbal_to_gyro, rate_rad_s_);
     const Vector2<T> body_on_gimbal = body_rate_on_gimbal(start, in.body_rate_rad_s);
     frame_roll = inner_gimbal_roll(start, in.body_rate_rad_s, rate_on_gimbal, body_on_gimbal);
-    Vector2<T> t = T(0.5) * (times(start.gimbal_to_gyro, rotor_torque_from_torquers(start, torquer)) +
-                             times(end_frame.gimbal_to_gyro, rotor_torque_from_torquers(end_frame, torquer)));
+    const T half_dt = T(0.5) * in.dt_s;
+    const T pitch_rate = rate_on_gimbal(0) - body_on_gimbal(0);  // th'
+    Vector2<T> t = rotor_torque_on_gyro_axes_moved(start, torquer, pitch_rate * half_dt, frame_roll * half_dt);
     t += times(start.gimbal_to_gyro, friction_correction(start, config_.friction, rate_on_gimbal, body_on_gimbal));
     // The exact step precesses with the readback's H: the rest of the momentum, J0 frame_roll,
     // needs (J0 frame_roll) (w_z, -w_y) more, taken off the torque (a quarter turn of w).

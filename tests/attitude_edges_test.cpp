@@ -170,6 +170,13 @@ TEST(GimbalFrameMoved, GivenAPitchChangeAndARollThenTheTorqueIsTheMovedFramesToT
         EXPECT_GT(e1 / e2, 6.5) << e1 << " " << e2;
         EXPECT_LT(e1 / e2, 9.5) << e1 << " " << e2;
       }
+      // A roll far beyond a step's (a step far too coarse): the torque keeps its size within
+      // 1 %, instead of growing with the square of the move.
+      const GimbalFrame<double> start = frame_of(pitch, gyro_roll);
+      const double size = rotor_torque_from_torquers(start, torquer).norm();
+      for (const double roll : {0.5, -3.0, 40.0}) {
+        EXPECT_NEAR(rotor_torque_on_gyro_axes_moved(start, torquer, 0.0, roll).norm(), size, 0.01 * size) << roll;
+      }
     }
   }
 }

@@ -117,10 +117,17 @@ template <typename T>
 // and a roll `roll` of the inner gimbal about the spin axis against the gyro's axes (which
 // never roll): second order in both, for the middle of a step. With gimbal_to_gyro
 // [c s; -s c] = [cos tau, -sin tau; sin tau, cos tau], tau the roll of y_I from y_g, the roll
-// adds to tau.
+// adds to tau. A move beyond half a radian (a step too coarse to follow its torquer axes) is
+// taken as half a radian, where the expansion's rotation is still within 1 % of unit length:
+// unbounded, it would scale the torque up with the move.
 template <typename T>
 [[nodiscard]] Vector2<T> rotor_torque_on_gyro_axes_moved(const GimbalFrame<T>& f, const Vector2<T>& torquer, T dth,
                                                          T roll) noexcept {
+  constexpr T kMaxMove = T(0.5);
+  if (!(std::abs(dth) <= kMaxMove && std::abs(roll) <= kMaxMove)) {  // rare: tested once
+    dth = std::min(kMaxMove, std::max(-kMaxMove, dth));
+    roll = std::min(kMaxMove, std::max(-kMaxMove, roll));
+  }
   const T half_dth_sq = T(0.5) * dth * dth, half_roll_sq = T(0.5) * roll * roll;
   const T cos_pitch = f.cos_pitch - half_dth_sq * f.cos_pitch - dth * f.sin_pitch;
   const Vector2<T> t(torquer(0), torquer(1) / std::max(cos_pitch, kMinCosPitch<T>));

@@ -80,5 +80,36 @@ TEST(GyroModelGimbalPrecession, GivenAnOuterTorqueWhenThePitchSweepsThenSinPitch
       << coarse.worst_pitch_error_rad << " " << fine.worst_pitch_error_rad;
 }
 
+// The report's torquers (kGyro) need no gimbal frame to step, but the model still reads it out
+// (rate_on_gimbal_rad_s, gimbal_frame_now) and resolves gimbal corrections with it: it must be
+// the frame of the last step, not of the uncaging. A gyro at rest on a body that rolls about
+// the spin axis: the gyro's axes do not roll, the gimbal's roll with the body, so the twist
+// between them is the body's roll.
+TEST(GyroModelGimbalFrame, GivenTheReportsTorquersWhenTheBodyRollsAboutTheSpinAxisThenTheFrameTwistsWithIt) {
+  GyroModelConfig<double> c;
+  c.pitch_inertia = 2e-5;
+  c.yaw_inertia = 2e-5;
+  c.spin_inertia = 4e-5;
+  c.friction = 0;
+  c.gimbal_cone_limit_rad = 1.5;
+  c.max_pitch_rate_rad_s = 10;
+  c.max_yaw_rate_rad_s = 10;
+  ASSERT_EQ(c.torquer_axes, TorquerAxes::kGyro);
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(c).ok());
+  ASSERT_EQ(g.uncage(Matrix3<double>::Identity(), Vector2<double>::Zero()), Status::kOk);
+  GyroStepInput<double> in;
+  in.dt_s = 1e-3;
+  in.spin_hz = 300;
+  for (int k = 1; k <= 10; ++k) {
+    const double roll = 0.07 * k;
+    in.R_earth_to_body = Eigen::AngleAxis<double>(roll, Vector3<double>::UnitX()).toRotationMatrix().transpose();
+    ASSERT_EQ(g.step_torque(in, Vector2<double>::Zero()), Status::kOk);
+    const Matrix2<double>& twist = g.gimbal_frame_now().gimbal_to_gyro;
+    EXPECT_NEAR(twist(0, 0), std::cos(roll), 1e-12) << k;
+    EXPECT_NEAR(twist(0, 1), -std::sin(roll), 1e-12) << k;
+  }
+}
+
 }  // namespace
 }  // namespace gyro

@@ -159,6 +159,7 @@ class GyroModel {
     pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
+    frame_stale_ = false;
     gimbal_ = gimbal_angles(frame().spin_axis_body);
     angles_stale_ = false;  // read just now (a correction before uncaging is gone)
     flags_ = gimbal_flag(gimbal_);
@@ -182,6 +183,7 @@ class GyroModel {
     q.normalize();
     q_gyro_to_earth_ = q;
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
+    frame_stale_ = false;
     rate_rad_s_ = times(frame().gimbal_to_gyro, body_rate_on_gimbal(frame(), body_rate_rad_s));
     isaf_angle_rad_.setZero();
     pending_correction_.setZero();
@@ -300,7 +302,12 @@ class GyroModel {
     angles_stale_ = false;
     flags_ = step_flags;
     applied_torque_ = torque;
-    if (on_gimbal) frame_index_ ^= 1u;
+    if (on_gimbal) {
+      frame_index_ ^= 1u;
+    } else {
+      R_earth_to_body_ = R_earth_to_body;  // kGyro: the frame is read afresh when asked for
+      frame_stale_ = true;
+    }
     frame_roll_ = frame_roll;
     have_frame_roll_ = true;
     return Status::kOk;
@@ -481,12 +488,21 @@ class GyroModel {
   mutable bool angles_stale_{false};
   bool drift_needs_angles_{false};
   bool has_error_sources_{false};
-  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};  // the last correction's body (refresh_angles)
+  // The body of the last correction (refresh_angles), or of the last step in kGyro (frame()).
+  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};
   // The gimbal frame at the end of the last step, and a spare the next step writes its end
   // frame into (kept only if the step succeeds: no copy of the frame per step).
-  std::array<GimbalFrame<T>, 2> frames_{};
+  // kGyro steps need no frame: it is made when read (the accessors, a gimbal correction).
+  mutable std::array<GimbalFrame<T>, 2> frames_{};
   std::uint32_t frame_index_{0};
-  [[nodiscard]] const GimbalFrame<T>& frame() const noexcept { return frames_[frame_index_]; }
+  mutable bool frame_stale_{false};
+  [[nodiscard]] const GimbalFrame<T>& frame() const noexcept {
+    if (frame_stale_) {
+      gimbal_frame(R_earth_to_body_, q_gyro_to_earth_, frames_[frame_index_]);
+      frame_stale_ = false;
+    }
+    return frames_[frame_index_];
+  }
   RotorTransition<T> transition_{};  // cached while H and dt stay the same
   NutationMap<T> nutation_map_{};    // cached with it (depends on H only)
   T cached_h_{};

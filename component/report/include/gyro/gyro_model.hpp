@@ -159,7 +159,6 @@ class GyroModel {
     pending_correction_.setZero();
     nutation_amplitude_rad_.setZero();
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
-    frame_stale_ = false;
     gimbal_ = gimbal_angles(frame().spin_axis_body);
     angles_stale_ = false;  // read just now (a correction before uncaging is gone)
     flags_ = gimbal_flag(gimbal_);
@@ -183,7 +182,6 @@ class GyroModel {
     q.normalize();
     q_gyro_to_earth_ = q;
     gimbal_frame(R_earth_to_body, q_gyro_to_earth_, frames_[frame_index_]);
-    frame_stale_ = false;
     rate_rad_s_ = times(frame().gimbal_to_gyro, body_rate_on_gimbal(frame(), body_rate_rad_s));
     isaf_angle_rad_.setZero();
     pending_correction_.setZero();
@@ -277,16 +275,12 @@ class GyroModel {
 
     Quaternion<T> q = q_gyro_to_earth_ * step_rotation(s.angle_rad, pending_correction_);
     renormalize(q);
-    GimbalAngles<T> g;
-    if (on_gimbal) {
-      // The frame at the step's end (the next one's start) goes to the spare buffer, taken on
-      // success; the angles come from its spin axis.
-      GimbalFrame<T>& end = frames_[frame_index_ ^ 1u];
-      gimbal_frame(R_earth_to_body, q, end);
-      g = gimbal_angles(end.spin_axis_body);
-    } else {
-      g = gimbal_angles(R_earth_to_body, spin_axis_in_earth(q));
-    }
+    // The frame at the step's end (the next one's start, and what the accessors and a gimbal
+    // correction read, whichever the torquers' axes) goes to the spare buffer, taken on
+    // success; the angles come from its spin axis.
+    GimbalFrame<T>& end = frames_[frame_index_ ^ 1u];
+    gimbal_frame(R_earth_to_body, q, end);
+    const GimbalAngles<T> g = gimbal_angles(end.spin_axis_body);
     if (!all_finite(g.pitch_rad, g.yaw_rad)) return Status::kNumericalOverflow;
 
     std::uint32_t step_flags = gimbal_flag(g);
@@ -302,12 +296,7 @@ class GyroModel {
     angles_stale_ = false;
     flags_ = step_flags;
     applied_torque_ = torque;
-    if (on_gimbal) {
-      frame_index_ ^= 1u;
-    } else {
-      R_earth_to_body_ = R_earth_to_body;  // kGyro: the frame is read afresh when asked for
-      frame_stale_ = true;
-    }
+    frame_index_ ^= 1u;
     frame_roll_ = frame_roll;
     have_frame_roll_ = true;
     return Status::kOk;
@@ -488,21 +477,12 @@ class GyroModel {
   mutable bool angles_stale_{false};
   bool drift_needs_angles_{false};
   bool has_error_sources_{false};
-  // The body of the last correction (refresh_angles), or of the last step in kGyro (frame()).
-  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};
+  Matrix3<T> R_earth_to_body_{Matrix3<T>::Identity()};  // the last correction's body (refresh_angles)
   // The gimbal frame at the end of the last step, and a spare the next step writes its end
   // frame into (kept only if the step succeeds: no copy of the frame per step).
-  // kGyro steps need no frame: it is made when read (the accessors, a gimbal correction).
-  mutable std::array<GimbalFrame<T>, 2> frames_{};
+  std::array<GimbalFrame<T>, 2> frames_{};
   std::uint32_t frame_index_{0};
-  mutable bool frame_stale_{false};
-  [[nodiscard]] const GimbalFrame<T>& frame() const noexcept {
-    if (frame_stale_) {
-      gimbal_frame(R_earth_to_body_, q_gyro_to_earth_, frames_[frame_index_]);
-      frame_stale_ = false;
-    }
-    return frames_[frame_index_];
-  }
+  [[nodiscard]] const GimbalFrame<T>& frame() const noexcept { return frames_[frame_index_]; }
   RotorTransition<T> transition_{};  // cached while H and dt stay the same
   NutationMap<T> nutation_map_{};    // cached with it (depends on H only)
   T cached_h_{};

@@ -18,6 +18,21 @@
 namespace gyro {
 namespace {
 
+// The seeker's rotor (H = 0.0754 N m s at 300 Hz, 600 Hz nutation), frictionless, with the
+// given torquers.
+GyroModelConfig<double> seeker_rotor(TorquerAxes axes) {
+  GyroModelConfig<double> c;
+  c.pitch_inertia = 2e-5;
+  c.yaw_inertia = 2e-5;
+  c.spin_inertia = 4e-5;
+  c.friction = 0;
+  c.gimbal_cone_limit_rad = 1.5;
+  c.max_pitch_rate_rad_s = 10;
+  c.max_yaw_rate_rad_s = 10;
+  c.torquer_axes = axes;
+  return c;
+}
+
 struct PrecessionRun {
   double worst_pitch_error_rad{0};
   double worst_yaw_error_rad{0};
@@ -28,15 +43,7 @@ struct PrecessionRun {
 // The seeker's rotor (H = 0.0754 N m s, 600 Hz nutation), body at rest, started on the steady
 // precession at th0 (so no nutation is excited), one second of T_out = 0.5 H.
 PrecessionRun run_outer_torque_precession(double dt) {
-  GyroModelConfig<double> c;
-  c.pitch_inertia = 2e-5;
-  c.yaw_inertia = 2e-5;
-  c.spin_inertia = 4e-5;
-  c.friction = 0;
-  c.gimbal_cone_limit_rad = 1.5;
-  c.max_pitch_rate_rad_s = 10;
-  c.max_yaw_rate_rad_s = 10;
-  c.torquer_axes = TorquerAxes::kGimbal;
+  const GyroModelConfig<double> c = seeker_rotor(TorquerAxes::kGimbal);
   const double spin_hz = 300;
   const double h = 2 * kPi<double> * spin_hz * c.spin_inertia;
   const double k = 0.5;  // T_out / H, rad/s
@@ -86,15 +93,7 @@ TEST(GyroModelGimbalPrecession, GivenAnOuterTorqueWhenThePitchSweepsThenSinPitch
 // the spin axis: the gyro's axes do not roll, the gimbal's roll with the body, so the twist
 // between them is the body's roll.
 TEST(GyroModelGimbalFrame, GivenTheReportsTorquersWhenTheBodyRollsAboutTheSpinAxisThenTheFrameTwistsWithIt) {
-  GyroModelConfig<double> c;
-  c.pitch_inertia = 2e-5;
-  c.yaw_inertia = 2e-5;
-  c.spin_inertia = 4e-5;
-  c.friction = 0;
-  c.gimbal_cone_limit_rad = 1.5;
-  c.max_pitch_rate_rad_s = 10;
-  c.max_yaw_rate_rad_s = 10;
-  ASSERT_EQ(c.torquer_axes, TorquerAxes::kGyro);
+  const GyroModelConfig<double> c = seeker_rotor(TorquerAxes::kGyro);
   GyroModel<double> g;
   ASSERT_TRUE(g.configure(c).ok());
   ASSERT_EQ(g.uncage(Matrix3<double>::Identity(), Vector2<double>::Zero()), Status::kOk);

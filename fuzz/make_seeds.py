@@ -185,9 +185,9 @@ def harness_frames(double):
                     0.02, 1.7e-3, 100], double) + bytes([3]) + struct.pack("<8I", 20, 10, 50, 50, 50, 8, 50, 25000)
     tick_in = struct.pack("<IBB", 7, 24, 0x6) + reals([0.3, -0.2, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.05, -0.03], double)
     tick_out = struct.pack("<IBIBIB4IB", 8, 1, 7, 0, 141, 15, 8, 8, 0, 0, 0) + struct.pack("<14I", *range(14))
-    telemetry = struct.pack("<IBI", 7, 3, 4) + struct.pack("<19I", *range(19)) + reals(
+    telemetry = struct.pack("<IBI", 7, 3, 4) + struct.pack("<21I", *range(21)) + reals(
         [0.01 * i for i in range(14)] + [1, 0, 0, 0, 400], double)
-    return (frame(0x10, struct.pack("<HBI", 1, 8 if double else 4, 25000000), double, 0) +
+    return (frame(0x10, struct.pack("<HBI", 2, 8 if double else 4, 25000000), double, 0) +
             frame(0x11, config, double, 1) + frame(0x12, bytes(25), double, 2) + frame(0x13, tick_in, double, 3) +
             frame(0x14, tick_out, double, 4) + frame(0x15, telemetry, double, 5) + frame(0x16, b"\x00", double, 6))
 

@@ -159,54 +159,6 @@ TEST(ComponentNavigation, GivenNavigationLostWhileTheBodyTurnsThenTheTorqueLawTa
   EXPECT_TRUE(turning.port.torque_written == Vector2<double>::Zero()) << turning.port.torque_written.transpose();
 }
 
-// ---- the gimbal stops ---------------------------------------------------------------------------
-
-// Near a stop the outward part of a slew command is withheld. Which side is outward is read
-// off this tick's reading when one was accepted (the prediction lags it by a residual), else
-// off the prediction (the last reading is older). Here the pitch is near the stop and the
-// yaw reading and its prediction sit 1e-3 rad either side of zero: the three answers differ.
-TEST(ComponentStopProtection, GivenAReadingAndItsPredictionOnOppositeSidesOfZeroNearAStopThenTheReadingDecidesWhichWayIsOutward) {
-  GyroComponentConfig<double> c = kSeeker;
-  c.cage_gain_1_s = 1e-3;  // caged at 0.47 rad: no cage-loop torque that would move the prediction
-  c.uncage_settle_ticks = 1;
-  Bench b(c);
-  ASSERT_TRUE(b.ok);
-  const double pitch = 0.47;  // the protection starts at the cone less the margin, 0.45 rad
-  b.port.reading.gimbal_angle_rad = Vector2<double>(pitch, -1e-3);
-  b.run(3);
-  ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
-  b.run(2);
-  ASSERT_EQ(b.component.mode(), GyroMode::kFree);
-  ASSERT_NEAR(b.tm().gimbal_predicted_rad(1), -1e-3, 1e-6);
-
-  b.port.reading.gimbal_angle_rad = Vector2<double>(pitch, 1e-3);
-  b.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.0, 0.5);
-  ASSERT_EQ(b.step(), Status::kOk);
-  ASSERT_LT(b.tm().gimbal_predicted_rad(1), 0.0);
-  ASSERT_GT(b.tm().gimbal_measured_rad(1), 0.0);
-  EXPECT_TRUE(b.raised(kGimbalStopProtect)) << "the reading is at +yaw: +yaw is outward";
-  EXPECT_EQ(b.tm().rate_cmd_rad_s(1), 0.0);
-
-  b.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.0, -0.5);
-  ASSERT_EQ(b.step(), Status::kOk);
-  ASSERT_LT(b.tm().gimbal_predicted_rad(1), 0.0);
-  EXPECT_FALSE(b.raised(kGimbalStopProtect)) << "-yaw is inward of the reading, though not of the prediction";
-  EXPECT_EQ(b.tm().rate_cmd_rad_s(1), -0.5);
-
-  // No reading this tick: the last one (+1e-3) is older than the prediction, which decides.
-  b.port.reading.valid = false;
-  ASSERT_EQ(b.step(), Status::kOk);
-  ASSERT_TRUE(b.raised(kPickoffInvalid));
-  ASSERT_LT(b.tm().gimbal_predicted_rad(1), 0.0);
-  ASSERT_GT(b.tm().gimbal_measured_rad(1), 0.0);
-  EXPECT_TRUE(b.raised(kGimbalStopProtect)) << "the prediction is at -yaw: -yaw is outward";
-  EXPECT_EQ(b.tm().rate_cmd_rad_s(1), 0.0);
-  b.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.0, 0.5);
-  ASSERT_EQ(b.step(), Status::kOk);
-  EXPECT_FALSE(b.raised(kGimbalStopProtect));
-  EXPECT_EQ(b.tm().rate_cmd_rad_s(1), 0.5);
-}
-
 // ---- leaving safe mode --------------------------------------------------------------------------
 
 // The residual monitor is fed only on measured ticks, and in safe mode a measured tick resets

@@ -165,7 +165,7 @@ void telemetry_round_trip() {
   m.attitude_gyro_to_earth = Quaternion<T>(T(0.5), T(0.5), T(-0.5), T(0.5));
   m.spin_hz = T(399.5);
   const HarnessFrame<T> f = over_the_wire<T>(encode_telemetry(m, 9));
-  EXPECT_EQ(f.length, 85 + 19 * sizeof(T));
+  EXPECT_EQ(f.length, 9 + 4 * kComponentFlagCount + 19 * sizeof(T));
   GyroTelemetry<T> out;
   ASSERT_TRUE(decode_telemetry(f, out));
   EXPECT_EQ(out.tick, 5u);  // low 32 bits

@@ -24,6 +24,7 @@ class Sil {
   GuidanceInput<T> guidance;  // request, slew command and nav_valid of the next step
   Matrix3<T> R_earth_to_body{Matrix3<T>::Identity()};
   Vector2<T> body_rate{Vector2<T>::Zero()};  // (pitch q, yaw r)
+  bool nav_valid{true};                      // sent with every step
   std::uint64_t tick{0};
   Status last{Status::kOk};
 
@@ -42,7 +43,7 @@ class Sil {
     GuidanceCommand<T> command;
     command.request = request;
     command.slew_rate_cmd_rad_s = guidance.slew_rate_cmd_rad_s;
-    command.nav_valid = true;
+    command.nav_valid = nav_valid;
     const SilStatus<Status> ran = loop.tick(tick, turning_body(R_earth_to_body, body_rate), command);
     if (ran.stub != Status::kOk) return ran.stub;
     guidance = loop.input();

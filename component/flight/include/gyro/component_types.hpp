@@ -54,14 +54,16 @@ enum ComponentFlag : std::uint32_t {
   kNavInvalid = 1u << 10,        // navigation marked invalid, or its attitude/rates unusable
   kCommandRejected = 1u << 11,   // a guidance command field unusable: ignored (slew held)
   kTickSkipped = 1u << 12,       // tick count jumped by 2..max_tick_gap: the gap was bridged
-  kGimbalStopProtect = 1u << 13, // a slew command toward a gimbal stop was withheld
+  kGimbalStopProtect = 1u << 13, // stop protection moved the rate: the gimbal is held off its stop
   kFaultLatched = 1u << 14,      // in safe mode
   kTickInvalid = 1u << 15,       // tick count repeated, went back or jumped too far: one tick
   kNotActive = 1u << 16,         // step() before activate(): refused (nothing else changes)
   kInputFault = 1u << 17,        // unusable guidance input (commands, tick) for long enough
   kSlewRateLimited = 1u << 18,   // the rate wanted (slew, or caging on the body) cut to its limit
+  kStopBeyondAuthority = 1u << 19, // the torquer cannot hold the gimbal's outward motion: it may reach its stop
+  kRequestRefused = 1u << 20,    // a mode request that could not be carried out was dropped
 };
-inline constexpr int kComponentFlagCount = 19;
+inline constexpr int kComponentFlagCount = 21;
 
 // The name of a flag bit as logs and CSV files spell it ("pickoff_invalid"); "" if none.
 [[nodiscard]] constexpr const char* flag_name(int bit) noexcept {
@@ -70,7 +72,8 @@ inline constexpr int kComponentFlagCount = 19;
       "pickoff_stale",   "pickoff_jump",         "residual_fault",      "torquer_saturated",
       "spin_low",        "torquer_write_failed", "nav_invalid",         "command_rejected",
       "tick_skipped",    "gimbal_stop_protect",  "fault_latched",       "tick_invalid",
-      "not_active",      "input_fault",          "slew_rate_limited"};
+      "not_active",      "input_fault",          "slew_rate_limited",   "stop_beyond_authority",
+      "request_refused"};
   return (bit >= 0 && bit < kComponentFlagCount) ? kNames[bit] : "";
 }
 

@@ -20,6 +20,7 @@
 #include "gyro/gyro_model.hpp"
 #include "gyro/gyro_port.hpp"
 #include "gyro/persistence.hpp"
+#include "gyro/stop_protection.hpp"
 
 namespace gyro {
 
@@ -38,7 +39,7 @@ class GyroComponent {
     if (!m.ok()) return m;
     config_ = config;
     estimator_ = est;
-    cos_protect_ = std::cos(config.gimbal_cone_limit_rad - config.gimbal_stop_margin_rad);
+    stop_bound_ = {std::sin(config.gimbal_cone_limit_rad - config.gimbal_stop_margin_rad), config.cage_gain_1_s};
     nutation_spin_low_ = T(-1);  // the nutation and the shaper follow the new rotor
     nutation_spin_high_ = T(-2);
     configured_ = true;
@@ -75,11 +76,14 @@ class GyroComponent {
 
     predict_and_check(elapsed, spin, r.accepted && nav_ok, flags);
     const bool fault_now = update_monitors(r.accepted, input_bad, flags);
-    update_mode(request, r.accepted && nav_ok, fault_now);
+    flags |= update_mode(request, r.accepted && nav_ok, fault_now);
 
-    const GimbalFrame<T>& frame = frame_now();
-    const Vector2<T> rate_cmd = rate_command(frame, nav_ok, r.accepted, flags);
-    const Vector2<T> torque = shape_torque(torque_command(frame, rate_cmd, spin, nav_ok, flags));
+    const GimbalFrame<T>& frame = frame_now(nav_ok);
+    const Vector2<T> body = nav_ok ? body_rate_on_gimbal(frame, body_rate_) : Vector2<T>::Zero();
+    const RateCommand rate = rate_command(frame, body, r.accepted);
+    const TorqueCommand wanted = torque_command(frame, rate, body, spin);
+    flags |= rate.flags | wanted.flags;
+    const Vector2<T> torque = shape_torque(wanted.torque);
     if (port_.write_torquer(torque) == PortStatus::kOk) {
       torque_held_ = torque;
       torquer_fail_ = false;
@@ -89,7 +93,7 @@ class GyroComponent {
     }
     if (mode_ == GyroMode::kFault) flags |= kFaultLatched;
 
-    publish(tick, flags, rate_cmd, spin);
+    publish(tick, flags, rate.rate_rad_s, spin);
     return input_bad ? Status::kInputIgnored : Status::kOk;
   }
 
@@ -223,7 +227,6 @@ class GyroComponent {
   [[nodiscard]] bool start_estimator() noexcept {
     if (estimator_.uncage_on_gimbal(attitude_.matrix(), body_rate_, measured_) != Status::kOk) return false;
     predicted_ = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
-    predicted_cos_cone_ = estimator_.gimbal_cosine_of_cone();
     return true;
   }
 
@@ -248,7 +251,6 @@ class GyroComponent {
     if (estimator_.small_angle_exceeded()) flags |= kSmallAngleExceeded;
     if (estimator_.gimbal_limit_exceeded()) flags |= kGimbalLimit;
     predicted_ = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
-    predicted_cos_cone_ = estimator_.gimbal_cosine_of_cone();
     if (!measurable) return;
     residual_ = measured_ - predicted_;
     if (mode_ == GyroMode::kFault) {
@@ -272,23 +274,24 @@ class GyroComponent {
     return reading || spin || torquer || input || residual_monitor_.tripped(c.residual_persistence_ticks);
   }
 
-  void update_mode(ModeRequest request, bool measurable, bool fault_now) noexcept {
+  // The mode's transition for this tick's request; kRequestRefused when the request could not
+  // be carried out (a request lasts one tick: it is dropped, never kept for later).
+  [[nodiscard]] std::uint32_t update_mode(ModeRequest request, bool measurable, bool fault_now) noexcept {
     if (fault_now) {
       mode_ = GyroMode::kFault;
-      return;
+      return request == ModeRequest::kNone ? 0u : kRequestRefused;
     }
     switch (mode_) {
       case GyroMode::kCaged:
-        if (request == ModeRequest::kUncage && measurable) {
+        if (request == ModeRequest::kUncage) {
           // The report's uncaging: rates from the body, attitude from the body plus the
           // measured gimbal offset. (The torque shaper keeps the cage loop's torques from
           // leaving a nutation this start cannot know.)
-          if (start_estimator()) {
-            estimator_ready_ = true;
-            residual_.setZero();
-            settle_ticks_ = 0;
-            mode_ = GyroMode::kUncaging;
-          }
+          if (!measurable || !start_estimator()) return kRequestRefused;
+          estimator_ready_ = true;
+          residual_.setZero();
+          settle_ticks_ = 0;
+          mode_ = GyroMode::kUncaging;
         }
         break;
       case GyroMode::kUncaging:
@@ -303,7 +306,8 @@ class GyroComponent {
         break;
       case GyroMode::kFault:
         // Leaves safe mode on request as soon as no fault condition holds; the estimator
-        // restarts from the next good reading.
+        // restarts from the next good reading. Only caging leaves it.
+        if (request == ModeRequest::kUncage) return kRequestRefused;
         if (request == ModeRequest::kCage) {
           mode_ = GyroMode::kCaged;
           estimator_ready_ = false;
@@ -313,79 +317,121 @@ class GyroComponent {
       case GyroMode::kIdle:
         break;
     }
+    return 0u;
   }
 
   [[nodiscard]] static T clamp(T v, T limit) noexcept { return std::min(limit, std::max(-limit, v)); }
 
-  // The gimbal frame the torque law resolves on: the estimator's, else the pickoffs'.
-  [[nodiscard]] const GimbalFrame<T>& frame_now() noexcept {
-    if (estimator_ready_) return estimator_.gimbal_frame_now();
+  // The gimbal frame the torque law and the stop protection resolve on: the estimator's, else
+  // the pickoffs' (before the estimator runs, and without navigation, when the prediction
+  // holds the last good body attitude while the body turns on).
+  [[nodiscard]] const GimbalFrame<T>& frame_now(bool nav_ok) noexcept {
+    if (estimator_ready_ && nav_ok) return estimator_.gimbal_frame_now();
     pickoff_frame_ = gimbal_frame_at(measured_);
     return pickoff_frame_;
   }
 
-  // Spin-axis rates wanted this tick on the gimbal axes (pitch about y_I, yaw about z_I),
-  // after limits and stop protection.
-  [[nodiscard]] Vector2<T> rate_command(const GimbalFrame<T>& frame, bool nav_ok, bool accepted,
-                                        std::uint32_t& flags) noexcept {
-    Vector2<T> w = Vector2<T>::Zero();
+  // Spin-axis rates to fly this tick on the gimbal axes (pitch about y_I, yaw about z_I),
+  // after stop protection and limits, and what the torque law is to do with them.
+  struct RateCommand {
+    Vector2<T> rate_rad_s{Vector2<T>::Zero()};
+    bool torquing{false};    // the torquers are driven this tick
+    bool protecting{false};  // stop protection moved the rate
+    Vector2<T> outward{Vector2<T>::Zero()};  // unit outward direction, when protecting
+    T outward_rate_rad_s{};  // and the spin axis's rate along it that keeps the bound
+    std::uint32_t flags{0};
+  };
+  [[nodiscard]] RateCommand rate_command(const GimbalFrame<T>& frame, const Vector2<T>& body,
+                                         bool accepted) const noexcept {
+    RateCommand c;
+    if (mode_ == GyroMode::kFault) return c;  // safe mode: torquers off
+    Vector2<T> w = Vector2<T>::Zero();         // uncaging: torquers off while it settles
     if (mode_ == GyroMode::kCaged) {
       // Electrical caging: the spin axis follows the body and the gimbal angles close at
       // cage_gain (th' = -k th, ps' = -k ps); without navigation, the gimbal loop alone.
-      if (nav_ok) w = body_rate_on_gimbal(frame, body_rate_);
+      w = body;
       if (accepted) w -= config_.cage_gain_1_s * Vector2<T>(measured_(0), measured_(1) * frame.cos_pitch);
     } else if (mode_ == GyroMode::kFree) {
       w = slew_cmd_;
-      // No slewing further into a gimbal stop: withhold the outward part of the command. Near
-      // the stop is judged on the prediction (within a residual of the pickoffs, far inside
-      // the margin), the direction on this tick's reading when it was accepted.
-      const Vector2<T>& g = accepted ? measured_ : predicted_;
-      if (estimator_ready_ && predicted_cos_cone_ < cos_protect_) {
-        for (int i = 0; i < 2; ++i) {
-          if (w(i) * g(i) > T(0)) {
-            w(i) = T(0);
-            flags |= kGimbalStopProtect;
-          }
-        }
-      }
     }
-    Vector2<T> limited(clamp(w(0), config_.max_pitch_rate_rad_s), clamp(w(1), config_.max_yaw_rate_rad_s));
-    if (limited != w) flags |= kSlewRateLimited;  // guidance (or the body) asks more than may be flown
-    return limited;
+    // The gimbal's outward motion is bounded whatever drives it, the body's turn included
+    // (gyro/stop_protection.hpp); uncaging torques only while the bound acts.
+    const ProtectedRate<T> p = protect_stop(frame, w, body, stop_bound_);
+    c.torquing = mode_ != GyroMode::kUncaging || p.acting;
+    c.protecting = p.acting;
+    c.outward = p.outward;
+    c.outward_rate_rad_s = p.outward_rate_rad_s;
+    if (p.acting) c.flags |= kGimbalStopProtect;
+    w = p.rate_rad_s;
+    c.rate_rad_s = Vector2<T>(clamp(w(0), config_.max_pitch_rate_rad_s), clamp(w(1), config_.max_yaw_rate_rad_s));
+    if (c.rate_rad_s != w) c.flags |= kSlewRateLimited;  // guidance (or the body) asks more than may be flown
+    return c;
   }
 
   // The torque law (gyro/gimbal_geometry.hpp): torquer commands that hold the spin axis at the
   // commanded rate against the bearings' friction on the gimbal rates (or without friction,
-  // the report's H*rate), saturated by scaling so the slew keeps its direction.
-  [[nodiscard]] Vector2<T> torque_command(const GimbalFrame<T>& frame, const Vector2<T>& rate, T spin, bool nav_ok,
-                                          std::uint32_t& flags) const noexcept {
-    if (mode_ != GyroMode::kCaged && mode_ != GyroMode::kFree) return Vector2<T>::Zero();
+  // the report's H*rate), saturated by scaling so the slew keeps its direction. When stop
+  // protection acts and the torquer cannot give it all, the command's part across the outward
+  // direction is dropped first; kStopBeyondAuthority when the rate the torquers then hold
+  // still moves the gimbal outward beyond the protection's bound.
+  struct TorqueCommand {
+    Vector2<T> torque{Vector2<T>::Zero()};
+    std::uint32_t flags{0};
+  };
+  [[nodiscard]] TorqueCommand torque_command(const GimbalFrame<T>& frame, const RateCommand& rate,
+                                             const Vector2<T>& body, T spin) const noexcept {
+    TorqueCommand t;
+    if (!rate.torquing) return t;
     // The rotor's momentum: the motor-held spin's plus that of the inner gimbal's roll.
     const T roll = estimator_ready_ ? estimator_.inner_gimbal_roll_rad_s() : T(0);
     const T h = angular_momentum(spin, config_.spin_inertia) + config_.spin_inertia * roll;
     const T f = config_.friction_compensation ? config_.friction : T(0);
-    const Vector2<T> body = nav_ok ? body_rate_on_gimbal(frame, body_rate_) : Vector2<T>::Zero();
-    Vector2<T> torque = torquers_for_rate(frame, h, f, rate, body);
-    if (!all_finite(torque)) {
+    Saturated s = saturated_torque(frame, h, f, rate.rate_rad_s, body);
+    const bool short_of_rate = (rate.flags & kSlewRateLimited) != 0u || s.saturated;
+    if (rate.protecting && s.saturated) {
+      const Vector2<T> outward = rate.outward * rate.outward_rate_rad_s;
+      const Vector2<T> outward_only(clamp(outward(0), config_.max_pitch_rate_rad_s),
+                                    clamp(outward(1), config_.max_yaw_rate_rad_s));
+      s = saturated_torque(frame, h, f, outward_only, body);
+    }
+    if (s.saturated) t.flags |= kTorquerSaturated;
+    if (short_of_rate) {
+      // The rate the torque written holds (the law's inverse), against the bound.
+      const Vector2<T> flown = s.saturated ? rate_for_torquers(frame, h, f, s.value, body) : rate.rate_rad_s;
+      if (outward_excess(frame, flown, body, stop_bound_).rate_rad_s > T(0)) t.flags |= kStopBeyondAuthority;
+    }
+    t.torque = s.value;
+    return t;
+  }
+
+  struct Saturated {
+    Vector2<T> value{Vector2<T>::Zero()};
+    bool saturated{false};
+  };
+  [[nodiscard]] Saturated saturated_torque(const GimbalFrame<T>& frame, T h, T f, const Vector2<T>& rate,
+                                           const Vector2<T>& body) const noexcept {
+    Saturated s;
+    s.value = torquers_for_rate(frame, h, f, rate, body);
+    if (!all_finite(s.value)) {
       // The products overflowed (huge rate limits or spin; f, h and the rates are finite and
       // not all zero here): the same direction from factors scaled to at most 1, then
       // saturated without overflow. (h can be negative: the inner gimbal rolling against a
       // slow spin.)
       const T k = std::max(f, std::abs(h));
       const T r = std::max(rate.cwiseAbs().maxCoeff(), body.cwiseAbs().maxCoeff());
-      torque = torquers_for_rate(frame, h / k, f / k, Vector2<T>(rate / r), Vector2<T>(body / r));
-      torque = (torque / torque.cwiseAbs().maxCoeff()) * config_.max_torque;
-      flags |= kTorquerSaturated;
-      return torque;
+      s.value = torquers_for_rate(frame, h / k, f / k, Vector2<T>(rate / r), Vector2<T>(body / r));
+      s.value = (s.value / s.value.cwiseAbs().maxCoeff()) * config_.max_torque;
+      s.saturated = true;
+      return s;
     }
-    const T largest = torque.cwiseAbs().maxCoeff();
+    const T largest = s.value.cwiseAbs().maxCoeff();
     if (largest > config_.max_torque) {
       // Divide first: the largest component becomes exactly 1, so the result never exceeds
       // max_torque (max_torque / largest can be subnormal and lose the digits that keep it).
-      torque = (torque / largest) * config_.max_torque;
-      flags |= kTorquerSaturated;
+      s.value = (s.value / largest) * config_.max_torque;
+      s.saturated = true;
     }
-    return torque;
+    return s;
   }
 
   // A step of torque sets the rotor nutating (amplitude dT / (H beta)), and the plant's
@@ -486,7 +532,7 @@ class GyroComponent {
   GyroPort<T>& port_;
   GyroComponentConfig<T> config_{};
   bool configured_{false};
-  T cos_protect_{T(1)};  // cos(gimbal_cone_limit_rad - gimbal_stop_margin_rad)
+  StopBound<T> stop_bound_{};  // sin(gimbal_cone_limit_rad - gimbal_stop_margin_rad), cage_gain_1_s
   GyroMode mode_{GyroMode::kIdle};
   GyroModel<T> estimator_{};
   bool estimator_ready_{false};
@@ -497,7 +543,6 @@ class GyroComponent {
   Vector2<T> measured_{Vector2<T>::Zero()};
   Vector2<T> residual_{Vector2<T>::Zero()};
   Vector2<T> predicted_{Vector2<T>::Zero()};  // the estimator's gimbal angles before correction
-  T predicted_cos_cone_{T(1)};
   GimbalFrame<T> pickoff_frame_{};  // the frame at the pickoffs' angles, before the estimator runs
   GyroStepInput<T> step_input_{};   // the estimator's step input (its attitude is passed checked)
   Vector2<T> torque_held_{Vector2<T>::Zero()};

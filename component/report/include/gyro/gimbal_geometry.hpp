@@ -173,6 +173,21 @@ template <typename T>
   return Vector2<T>(h * rate(1) + friction * relative(0), -h * rate(0) * c + friction * relative(1) / c);
 }
 
+// The inverse of torquers_for_rate: the steady inertial rate of the spin axis that torquer
+// commands `torquer` hold, solving
+//   [f, h; -h c, f / c] w = (T_inner + f wb_y, T_outer + f wb_z / c),   det = f^2 / c + h^2 c.
+// Zero when the torquers hold no rate (h = f = 0).
+template <typename T>
+[[nodiscard]] Vector2<T> rate_for_torquers(const GimbalFrame<T>& f, T h, T friction, const Vector2<T>& torquer,
+                                           const Vector2<T>& body_rate_on_gimbal_rad_s) noexcept {
+  const T c = f.cos_pitch;
+  const T det = friction * friction / c + h * h * c;
+  if (!(det > T(0))) return Vector2<T>::Zero();
+  const T a = torquer(0) + friction * body_rate_on_gimbal_rad_s(0);
+  const T b = torquer(1) + friction * body_rate_on_gimbal_rad_s(1) / c;
+  return Vector2<T>((friction / c * a - h * b) / det, (h * c * a + friction * b) / det);
+}
+
 // What the report's model (friction f on the inertial rates w, in its own axes) must be
 // given on top of the torquers' torque so that its friction is the bearings' on (y_I, z_I):
 //   f (wb_y, (wb_z - w_z sin^2 th) / cos^2 th)

@@ -50,7 +50,7 @@
 
 namespace gyro::pil {
 
-inline constexpr std::uint16_t kProtocolVersion = 1;
+inline constexpr std::uint16_t kProtocolVersion = 2;
 
 inline constexpr std::uint8_t kHello = 0x10u;
 inline constexpr std::uint8_t kConfig = 0x11u;

@@ -2,7 +2,7 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS gyro_exact gyro_model gyro_component gyro_port gyro_hil_stub EXPORT gyroTargets)
+install(TARGETS gyro_exact gyro_model gyro_component gyro_port gyro_examples gyro_hil_stub EXPORT gyroTargets)
 install(DIRECTORY component/exact/include/ component/report/include/ component/flight/include/ port/include/
                   hil_stub/include/ examples/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -15,7 +15,7 @@
 #include "fw_io.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/gyro_port.hpp"
-#include "gyro/seeker_example.hpp"  // the example gyro's constants only: no stub code is used
+#include "gyro/seeker_component_example.hpp"  // flight-side: no SIL header
 #include "stack_paint.hpp"
 #include "target_scalar.hpp"
 
@@ -57,7 +57,7 @@ class RegisterPort final : public gyro::GyroPort<Scalar> {
 // The example seeker gyro (J = 2e-5, J0 = 3e-5 kg m^2, f = 4e-4 N m s, 400 Hz, 2 kHz tick),
 // with the fault campaign's estimator gain and residual limit (docs/fault-campaign.md).
 gyro::GyroComponentConfig<Scalar> seeker_config() noexcept {
-  gyro::GyroComponentConfig<Scalar> c = gyro::SeekerExample<Scalar>::component();
+  gyro::GyroComponentConfig<Scalar> c = gyro::SeekerComponentExample<Scalar>::component();
   c.estimator_gain = static_cast<Scalar>(0.02);
   c.residual_limit_rad = static_cast<Scalar>(1.7e-3);
   c.uncage_settle_ticks = 100;

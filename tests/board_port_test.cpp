@@ -5,6 +5,7 @@
 // flies the seeker through the port, and each detection the driver owns is shown flagged.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -57,6 +58,9 @@ class BoardHardware {
   bool sequence_frozen{false}; // the converter did not complete a conversion (no new data)
   bool adc_fault{false};
   std::uint16_t sequence_offset{0};
+  // The conversion taken this many ticks after the tick (negative: before it), extrapolated
+  // from the stub's last two conversions (the gimbal moves smoothly over a tick).
+  F sample_shift_ticks{0};
 
   explicit BoardHardware(const BoardPortConfig<F>& c)
       : lsb_rad_(c.pickoff_full_scale_rad / F(kAdcFullScaleCode)),
@@ -69,8 +73,10 @@ class BoardHardware {
   void convert(const PickoffReading<F>& r) {
     regs.adc_status = static_cast<std::uint16_t>(kAdcReady | (adc_fault ? kAdcFault : 0u));
     if (sequence_frozen) return;
+    const Vector2<F> angle = r.gimbal_angle_rad + sample_shift_ticks * (r.gimbal_angle_rad - last_angle_);
+    last_angle_ = r.gimbal_angle_rad;
     for (int i = 0; i < 2; ++i) {
-      const F counts = std::round(r.gimbal_angle_rad(i) / lsb_rad_);
+      const F counts = std::round(angle(i) / lsb_rad_);
       const F clamped = std::fmin(F(kAdcFullScaleCode), std::fmax(-F(kAdcFullScaleCode), counts));
       std::int16_t code = static_cast<std::int16_t>(clamped);
       if (i == stuck_axis) code = kStuckCode;
@@ -99,6 +105,7 @@ class BoardHardware {
   F lsb_rad_;
   F torque_lsb_;
   std::uint16_t held_[2] = {kDacZeroCode, kDacZeroCode};
+  Vector2<F> last_angle_{Vector2<F>::Zero()};
 };
 
 // The flight computer of the SIL loop: each tick the stub's conversion goes into the
@@ -218,6 +225,48 @@ TEST(BoardPortSil, GivenTheSeekerThenItSlewsThroughThePortAsOnTheStub) {
   EXPECT_EQ(board.pickoff_flags, 0u) << "no healthy conversion refused (rail, stuck, stale)";
   const BoardPortDiagnostics& d = rig.port.diagnostics();
   EXPECT_EQ(d.rail_readings + d.stuck_readings + d.missed_conversions + d.dac_clamped + d.dac_rejected, 0u);
+}
+
+// What a sample taken off the tick costs: the estimator takes the reading as the angle at the
+// tick, so a sample d late (early) is off by the gimbal's rate relative to the body times d,
+// and the estimate follows it (the residual feedback pulls the attitude onto the readings).
+TEST(BoardPortSil, GivenPickoffsSampledOffTheTickThenTheEstimateIsOffByRateTimesDelay) {
+  const F tick = SeekerExample<F>::kTick;
+  const Vector2<F> cmd(F(0.3), F(-0.2));  // the gimbal's rate relative to the body at rest
+  const double rate = std::hypot(0.3, 0.2);
+  for (const F shift : {F(0), F(0.25), F(0.5), F(1), F(-0.5)}) {
+    SimulatedGyro<F> stub;
+    ASSERT_TRUE(stub.configure(noisy_stub()).ok());
+    BoardRig rig(stub, board_config());
+    ASSERT_TRUE(rig.component.configure(SeekerExample<F>::component()).ok());
+    rig.hardware.sample_shift_ticks = shift;
+    Flight<BoardRig> flight(stub, rig);
+    ASSERT_TRUE(flight.start());
+    flight.run(200);
+    (void)flight.step(ModeRequest::kUncage);
+    flight.run(static_cast<int>(SeekerExample<F>::component().uncage_settle_ticks));
+    flight.command.slew_rate_cmd_rad_s = cmd;
+    double worst_residual = 0.0;
+    double error_sum = 0.0;
+    const int ticks = 1000;  // 0.5 s: the estimate settles in 1 / (gain x rate) = 0.1 s
+    for (int k = 0; k < ticks; ++k) {
+      (void)flight.step();
+      const GyroTelemetry<F>& tm = rig.component.telemetry();
+      worst_residual = std::max(worst_residual, static_cast<double>(tm.residual_rad.cwiseAbs().maxCoeff()));
+      if (k >= ticks / 2) error_sum += (tm.gimbal_predicted_rad - stub.gimbal_angle_rad()).cast<double>().norm();
+    }
+    const double estimate_error = error_sum / (ticks / 2);
+    const double expected = rate * std::abs(static_cast<double>(shift * tick));
+    std::printf("sample %+.2f tick (%+5.0f us): estimate off by %.2e rad (rate x delay %.2e), worst residual %.2e\n",
+                static_cast<double>(shift), 1e6 * static_cast<double>(shift * tick), estimate_error, expected,
+                worst_residual);
+    EXPECT_EQ(rig.component.mode(), GyroMode::kFree);
+    if (shift != F(0)) {
+      EXPECT_NEAR(estimate_error, expected, 0.3 * expected + 1e-5);
+    } else {
+      EXPECT_LT(estimate_error, 1e-5);
+    }
+  }
 }
 
 // A board flown caged for 100 ticks, for the detections.

@@ -7,11 +7,13 @@
 
 #include <algorithm>
 
+#include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
 namespace gyro {
 namespace {
 
+using testing::Bench;
 using testing::SeekerGyro;
 using testing::Sil;
 
@@ -112,6 +114,29 @@ TEST(ComponentStopProtection, BeyondAuthorityIsFlaggedBeforeContact) {
     // The flag comes once the gimbal is within the bound's reach of the protection cone,
     // tens of ms before the stop's 0.1 rad further out.
     EXPECT_LT(f.first_beyond_authority + 40, f.first_contact) << body.transpose();
+  }
+}
+
+// Uncaged at 0.5 rad of pitch, beyond the 0.45 rad protection cone, with a torquer that gives
+// 0.66 rad/s where the bound asks a pull-back of 1.0: saturated, yet moving in, which is no
+// danger. With the body pitching away at 2 rad/s the same torque leaves it moving out.
+TEST(ComponentStopProtection, BeyondAuthorityOnlyWhileTheGimbalMovesOut) {
+  GyroComponentConfig<double> c = SeekerGyro<double>::component();
+  c.max_torque = 0.05;
+  c.uncage_settle_ticks = 1;
+  for (const double body_pitch_rate : {0.0, -2.0}) {
+    Bench b(c);
+    ASSERT_TRUE(b.ok);
+    b.port.reading.gimbal_angle_rad = Vector2<double>(0.5, 0.0);
+    b.guidance.body_rate_rad_s = Vector3<double>(0.0, body_pitch_rate, 0.0);
+    b.run(3);
+    ASSERT_EQ(b.step(ModeRequest::kUncage), Status::kOk);
+    (void)b.step();
+    ASSERT_EQ(b.component.mode(), GyroMode::kFree);
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_TRUE(b.raised(kGimbalStopProtect));
+    EXPECT_TRUE(b.raised(kTorquerSaturated));
+    EXPECT_EQ(b.raised(kStopBeyondAuthority), body_pitch_rate != 0.0) << body_pitch_rate;
   }
 }
 

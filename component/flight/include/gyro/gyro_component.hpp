@@ -373,7 +373,7 @@ class GyroComponent {
   // the report's H*rate), saturated by scaling so the slew keeps its direction. When stop
   // protection acts and the torquer cannot give it all, the command's part across the outward
   // direction is dropped first; kStopBeyondAuthority when the rate the torquers then hold
-  // still moves the gimbal outward beyond the protection's bound.
+  // still moves the gimbal outward, faster than the protection's bound allows.
   struct TorqueCommand {
     Vector2<T> torque{Vector2<T>::Zero()};
     std::uint32_t flags{0};
@@ -398,7 +398,10 @@ class GyroComponent {
     if (short_of_rate) {
       // The rate the torque written holds (the law's inverse), against the bound.
       const Vector2<T> flown = s.saturated ? rate_for_torquers(frame, h, f, s.value, body) : rate.rate_rad_s;
-      if (outward_excess(frame, flown, body, stop_bound_).rate_rad_s > T(0)) t.flags |= kStopBeyondAuthority;
+      // Beyond the bound and still moving out (beyond c_p a pull-back slower than the bound
+      // asks is no danger: the gimbal is on its way in).
+      const OutwardExcess<T> e = outward_excess(frame, flown, body, stop_bound_);
+      if (e.rate_rad_s > T(0) && e.rate_rad_s + e.allowed_rad_s > T(0)) t.flags |= kStopBeyondAuthority;
     }
     t.torque = s.value;
     return t;

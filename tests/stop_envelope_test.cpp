@@ -54,6 +54,7 @@ TEST_P(StopEnvelope, GIVEN_a_body_turning_the_gimbal_out_THEN_no_contact_within_
           const Authority a = authority(g, k);
           const Result r = run_case(g, k);
           ASSERT_TRUE(r.ok) << r.error;
+          EXPECT_TRUE(r.reached_mode) << describe(g, k, a, r);  // the mode under test was flown
           if (a.demand <= 1.0) {
             ++within;
             EXPECT_EQ(r.contact_ticks, 0u) << describe(g, k, a, r);

@@ -27,6 +27,7 @@ constexpr double kSeekerTurns[] = {0, 0.2, 0.35, 0.45, 0.5, 0.7, 1, 2};
 constexpr double kReportTurns[] = {0, 0.1, 0.15, 0.2, 0.35, 0.45, 0.5, 0.7, 1, 2};
 constexpr double kRolls[] = {0, 5, 10};
 constexpr double kCones[] = {0, 10, 20};
+constexpr int kMaxListed = 40;  // within-authority contacts listed one by one (all are in the CSV)
 
 struct Row {
   int gyro{};
@@ -272,6 +273,8 @@ int main(int argc, char** argv) {
   work();
   for (std::thread& t : pool) t.join();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  int not_reached = 0;
+  for (const Row& r : rows) not_reached += r.r.reached_mode ? 0 : 1;
   for (const Row& r : rows) {
     if (!r.r.ok) {
       std::fprintf(stderr, "%s %s turn %g %s roll %g cone %g: %s\n", gyros[static_cast<std::size_t>(r.gyro)].name.c_str(),
@@ -388,8 +391,10 @@ int main(int argc, char** argv) {
     md += "| gyro | mode | turn | direction | roll | start cone | demand | contact at | contact ticks | cone past c_p at | "
           "stop_protect at | beyond_authority at | gimbal_limit at | safe mode at | flags before contact |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    int listed = 0;
     for (const Row& r : rows) {
       if (!r.within() || r.r.contact_ticks == 0) continue;
+      if (++listed > kMaxListed) continue;
       auto at = [](double s) { return s < 0 ? std::string("-") : fmt("%.3f", s); };
       md += "| " + gyros[static_cast<std::size_t>(r.gyro)].name + " | " + mode_name(r.k.mode) +
             fmt(" | %g", r.k.turn_rad_s) + " | " + direction_key(r.k.direction) + fmt(" | %g", r.k.roll_rad_s) +
@@ -398,8 +403,15 @@ int main(int argc, char** argv) {
             at(r.r.first_protect_s) + " | " + at(r.r.first_beyond_s) + " | " + at(r.r.first_limit_s) + " | " +
             at(r.r.first_fault_s) + " | " + flag_names(r.r.flags_at_contact) + " |\n";
     }
+    if (listed > kMaxListed) {
+      md += fmt("\n... and %.0f more: `docs/stop-protection.csv`, rows with within_authority 1 and contact 1.\n",
+                listed - kMaxListed);
+    }
   }
 
+  if (not_reached > 0) {
+    md += fmt("\n**%.0f cases never flew their mode** (the `reached_mode` column of the CSV).\n", not_reached);
+  }
   md += fmt("\n%.0f cases, ", static_cast<double>(rows.size())) + fmt("%.0f s of flight each", kFlightSeconds) +
         fmt(", measured in %.0f s of run time.\n", seconds);
 
@@ -421,16 +433,16 @@ int main(int argc, char** argv) {
     }
     std::fputs("gyro,mode,turn_rad_s,direction,roll_rad_s,cone_deg,start_cone_rad,demand,within_authority,contact,"
                "contact_ticks,first_contact_s,max_cone_rad,closest_rad,first_cone_past_cp_s,first_stop_protect_s,"
-               "first_beyond_authority_s,first_gimbal_limit_s,first_fault_s,final_mode,demand_turn_plus_u,flags_seen\n",
+               "first_beyond_authority_s,first_gimbal_limit_s,first_fault_s,final_mode,reached_mode,demand_turn_plus_u,flags_seen\n",
                f);
     for (const Row& r : rows) {
-      std::fprintf(f, "%s,%s,%g,%s,%g,%g,%.5f,%.3f,%d,%d,%llu,%.4f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.3f,%s\n",
+      std::fprintf(f, "%s,%s,%g,%s,%g,%g,%.5f,%.3f,%d,%d,%llu,%.4f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%d,%.3f,%s\n",
                    gyros[static_cast<std::size_t>(r.gyro)].name.c_str(), mode_key(r.k.mode), r.k.turn_rad_s,
                    direction_key(r.k.direction), r.k.roll_rad_s, r.k.cone_deg, r.r.start_cone_rad, r.a.demand,
                    r.within() ? 1 : 0, r.r.contact_ticks > 0 ? 1 : 0, static_cast<unsigned long long>(r.r.contact_ticks),
                    r.r.first_contact_s, r.r.max_cone_rad, r.r.closest_rad, r.r.first_beyond_cp_s, r.r.first_protect_s,
                    r.r.first_beyond_s, r.r.first_limit_s, r.r.first_fault_s, gyro::to_string(r.r.final_mode),
-                   r.demand_turn_plus_u, flag_names(r.r.flags_seen, " ").c_str());
+                   r.r.reached_mode ? 1 : 0, r.demand_turn_plus_u, flag_names(r.r.flags_seen, " ").c_str());
     }
     std::fclose(f);
   }

@@ -323,6 +323,7 @@ struct Result {
   std::uint32_t flags_seen{};   // OR over the flight
   std::uint32_t flags_at_contact{};  // OR up to the first contact
   bool fault{false};
+  bool reached_mode{false};     // the case's mode was flown (free, uncaging or caged) at some tick
   GyroMode final_mode{GyroMode::kIdle};
 };
 
@@ -379,6 +380,9 @@ inline Result run_case(const Gyro& g, const Case& k) {
   const std::uint32_t protect_bit = flag_bit("gimbal_stop_protect");
   const std::uint32_t beyond_bit = flag_bit("stop_beyond_authority");
   const std::uint32_t limit_bit = flag_bit("gimbal_limit");
+  const GyroMode wanted = k.mode == Mode::kCaged      ? GyroMode::kCaged
+                          : k.mode == Mode::kUncaging ? GyroMode::kUncaging
+                                                      : GyroMode::kFree;
   GuidanceCommand<double> command;
   for (std::uint64_t i = 0; i < flight_ticks; ++i) {
     tick = first + i;
@@ -429,6 +433,7 @@ inline Result run_case(const Gyro& g, const Case& k) {
     first_time(out.first_fault_s, comp.mode() == GyroMode::kFault);
     first_time(out.first_beyond_cp_s, cone > cp);
     out.fault = out.fault || comp.mode() == GyroMode::kFault;
+    out.reached_mode = out.reached_mode || comp.mode() == wanted;
   }
   if (out.contact_ticks == 0) out.flags_at_contact = out.flags_seen;
   out.final_mode = comp.mode();

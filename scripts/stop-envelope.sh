@@ -11,4 +11,5 @@ cmake --preset host >/dev/null
 cmake --build --preset host --target gyro_stop_envelope
 build/host/tools/gyro_stop_envelope --scenarios scenarios --jobs "$jobs" \
   --markdown docs/stop-protection.md --csv docs/stop-protection.csv >/dev/null
+echo "Measured on the component of commit $(git log -1 --format=%h -- component)$(git diff --quiet HEAD -- component || echo ', with local changes')." >> docs/stop-protection.md
 echo "wrote docs/stop-protection.md, docs/stop-protection.csv"

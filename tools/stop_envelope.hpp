@@ -323,7 +323,14 @@ struct Result {
   std::uint32_t flags_seen{};   // OR over the flight
   std::uint32_t flags_at_contact{};  // OR up to the first contact
   bool fault{false};
-  bool reached_mode{false};     // the case's mode was flown (free, uncaging or caged) at some tick
+  bool reached_mode{false};
+  // How the protection flies: the stop_protect flag's switchings (chatter), the ticks the
+  // torquer saturated, the component's worst residual (pickoffs against its prediction) and
+  // whether its residual fault was raised.
+  std::uint64_t protect_toggles{};
+  std::uint64_t saturated_ticks{};
+  double worst_residual_rad{};
+  bool residual_fault{false};     // the case's mode was flown (free, uncaging or caged) at some tick
   GyroMode final_mode{GyroMode::kIdle};
 };
 
@@ -383,6 +390,9 @@ inline Result run_case(const Gyro& g, const Case& k) {
   const GyroMode wanted = k.mode == Mode::kCaged      ? GyroMode::kCaged
                           : k.mode == Mode::kUncaging ? GyroMode::kUncaging
                                                       : GyroMode::kFree;
+  const std::uint32_t saturated_bit = flag_bit("torquer_saturated");
+  const std::uint32_t residual_bit = flag_bit("residual_fault");
+  bool protect_before = false;
   GuidanceCommand<double> command;
   for (std::uint64_t i = 0; i < flight_ticks; ++i) {
     tick = first + i;
@@ -434,6 +444,14 @@ inline Result run_case(const Gyro& g, const Case& k) {
     first_time(out.first_beyond_cp_s, cone > cp);
     out.fault = out.fault || comp.mode() == GyroMode::kFault;
     out.reached_mode = out.reached_mode || comp.mode() == wanted;
+    const bool protect_now = (tm.flags & protect_bit) != 0u;
+    out.protect_toggles += protect_now != protect_before ? 1u : 0u;
+    protect_before = protect_now;
+    out.saturated_ticks += (tm.flags & saturated_bit) != 0u ? 1u : 0u;
+    out.residual_fault = out.residual_fault || (tm.flags & residual_bit) != 0u;
+    if (comp.mode() != GyroMode::kFault) {
+      out.worst_residual_rad = std::max(out.worst_residual_rad, tm.residual_rad.cwiseAbs().maxCoeff());
+    }
   }
   if (out.contact_ticks == 0) out.flags_at_contact = out.flags_seen;
   out.final_mode = comp.mode();

@@ -188,8 +188,10 @@ int run_one(const std::vector<Gyro>& gyros, const std::vector<std::string>& a) {
   std::printf("first: stop_protect %.4f, beyond_authority %.4f, gimbal_limit %.4f, safe mode %.4f s; final mode %s\n",
               r.r.first_protect_s, r.r.first_beyond_s, r.r.first_limit_s, r.r.first_fault_s,
               gyro::to_string(r.r.final_mode));
-  std::printf("stop_protect switchings %llu, torquer saturated %llu ticks, worst residual %.2e rad%s\n",
-              static_cast<unsigned long long>(r.r.protect_toggles), static_cast<unsigned long long>(r.r.saturated_ticks),
+  std::printf("stop_protect switchings %llu, beyond_authority %llu ticks, furthest out %.4f rad, torquer saturated "
+              "%llu ticks, worst residual %.2e rad%s\n",
+              static_cast<unsigned long long>(r.r.protect_toggles), static_cast<unsigned long long>(r.r.beyond_ticks),
+              r.r.furthest_out_rad, static_cast<unsigned long long>(r.r.saturated_ticks),
               r.r.worst_residual_rad, r.r.residual_fault ? ", residual fault" : "");
   std::printf("flags seen: %s\nflags up to contact: %s\n(%.2f s of run time)\n", flag_names(r.r.flags_seen).c_str(),
               flag_names(r.r.flags_at_contact).c_str(), s);
@@ -354,22 +356,24 @@ int main(int argc, char** argv) {
 
   // How the protection flies, within authority.
   md += "\n## How it flies within authority\n\n";
-  md += "Per gyro and mode, the cases within authority: the furthest the plant's cone went past c_p (mrad; "
-        "negative: it stayed inside), how many raised a residual fault (the pickoffs against the component's "
+  md += "Per gyro and mode, the cases within authority: the furthest the plant's cone went past c_p, or past "
+        "its starting cone where it started beyond c_p (mrad; negative: it stayed inside), how many raised "
+        "`stop_beyond_authority` and its ticks (max per case), how many raised a residual fault (the pickoffs against the component's "
         "prediction), the component's worst residual before any safe mode (mrad), the switchings of "
         "`gimbal_stop_protect` (chatter; median / max per case) and the ticks of `torquer_saturated` (max per case).\n\n";
-  md += "| gyro | mode | cases | furthest past c_p (mrad) | residual fault | worst residual (mrad) | stop_protect "
-        "switchings | saturated ticks |\n|---|---|---|---|---|---|---|---|\n";
+  md += "| gyro | mode | cases | furthest past c_p (mrad) | beyond_authority raised | its ticks | residual fault | worst residual (mrad) | stop_protect "
+        "switchings | saturated ticks |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (int gi = 0; gi < 2; ++gi) {
     for (Mode m : kModes) {
       std::vector<double> toggles;
-      int n = 0, residual_faults = 0;
-      double past = -1e300, worst_res = 0, saturated = 0;
-      const double cp = gyros[static_cast<std::size_t>(gi)].protect_cone_rad();
+      int n = 0, residual_faults = 0, beyond = 0;
+      double past = -1e300, worst_res = 0, saturated = 0, beyond_ticks = 0;
       for (const Row& r : rows) {
         if (r.gyro != gi || r.k.mode != m || !r.within()) continue;
         ++n;
-        past = std::max(past, r.r.max_cone_rad - cp);
+        past = std::max(past, r.r.furthest_out_rad);
+        beyond += r.r.beyond_ticks > 0 ? 1 : 0;
+        beyond_ticks = std::max(beyond_ticks, static_cast<double>(r.r.beyond_ticks));
         residual_faults += r.r.residual_fault ? 1 : 0;
         worst_res = std::max(worst_res, r.r.worst_residual_rad);
         toggles.push_back(static_cast<double>(r.r.protect_toggles));
@@ -378,7 +382,8 @@ int main(int argc, char** argv) {
       if (n == 0) continue;
       std::sort(toggles.begin(), toggles.end());
       md += "| " + gyros[static_cast<std::size_t>(gi)].name + " | " + mode_name(m) + fmt(" | %.0f", n) +
-            fmt(" | %.1f", past * 1e3) + fmt(" | %.0f", residual_faults) + fmt(" | %.2f", worst_res * 1e3) +
+            fmt(" | %.1f", past * 1e3) + fmt(" | %.0f", beyond) + fmt(" | %.0f", beyond_ticks) +
+            fmt(" | %.0f", residual_faults) + fmt(" | %.2f", worst_res * 1e3) +
             fmt(" | %.0f", toggles[toggles.size() / 2]) + fmt(" / %.0f", toggles.back()) + fmt(" | %.0f |\n", saturated);
     }
   }
@@ -468,17 +473,19 @@ int main(int argc, char** argv) {
     std::fputs("gyro,mode,turn_rad_s,direction,roll_rad_s,cone_deg,start_cone_rad,demand,within_authority,contact,"
                "contact_ticks,first_contact_s,max_cone_rad,closest_rad,first_cone_past_cp_s,first_stop_protect_s,"
                "first_beyond_authority_s,first_gimbal_limit_s,first_fault_s,final_mode,reached_mode,demand_turn_plus_u,"
-               "protect_toggles,saturated_ticks,worst_residual_rad,residual_fault,flags_seen\n",
+               "protect_toggles,saturated_ticks,worst_residual_rad,residual_fault,beyond_authority_ticks,furthest_out_rad,"
+               "flags_seen\n",
                f);
     for (const Row& r : rows) {
-      std::fprintf(f, "%s,%s,%g,%s,%g,%g,%.5f,%.3f,%d,%d,%llu,%.4f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%d,%.3f,%llu,%llu,%.6f,%d,%s\n",
+      std::fprintf(f, "%s,%s,%g,%s,%g,%g,%.5f,%.3f,%d,%d,%llu,%.4f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%d,%.3f,%llu,%llu,%.6f,%d,%llu,%.5f,%s\n",
                    gyros[static_cast<std::size_t>(r.gyro)].name.c_str(), mode_key(r.k.mode), r.k.turn_rad_s,
                    direction_key(r.k.direction), r.k.roll_rad_s, r.k.cone_deg, r.r.start_cone_rad, r.a.demand,
                    r.within() ? 1 : 0, r.r.contact_ticks > 0 ? 1 : 0, static_cast<unsigned long long>(r.r.contact_ticks),
                    r.r.first_contact_s, r.r.max_cone_rad, r.r.closest_rad, r.r.first_beyond_cp_s, r.r.first_protect_s,
                    r.r.first_beyond_s, r.r.first_limit_s, r.r.first_fault_s, gyro::to_string(r.r.final_mode),
                    r.r.reached_mode ? 1 : 0, r.demand_turn_plus_u, static_cast<unsigned long long>(r.r.protect_toggles),
-                   static_cast<unsigned long long>(r.r.saturated_ticks), r.r.worst_residual_rad, r.r.residual_fault ? 1 : 0, flag_names(r.r.flags_seen, " ").c_str());
+                   static_cast<unsigned long long>(r.r.saturated_ticks), r.r.worst_residual_rad, r.r.residual_fault ? 1 : 0,
+                   static_cast<unsigned long long>(r.r.beyond_ticks), r.r.furthest_out_rad, flag_names(r.r.flags_seen, " ").c_str());
     }
     std::fclose(f);
   }

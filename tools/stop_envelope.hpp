@@ -329,6 +329,8 @@ struct Result {
   // whether its residual fault was raised.
   std::uint64_t protect_toggles{};
   std::uint64_t saturated_ticks{};
+  std::uint64_t beyond_ticks{};   // ticks with stop_beyond_authority
+  double furthest_out_rad{-1e300};  // largest cone less max(c_p, start cone): how far it went out
   double worst_residual_rad{};
   bool residual_fault{false};     // the case's mode was flown (free, uncaging or caged) at some tick
   GyroMode final_mode{GyroMode::kIdle};
@@ -448,6 +450,8 @@ inline Result run_case(const Gyro& g, const Case& k) {
     out.protect_toggles += protect_now != protect_before ? 1u : 0u;
     protect_before = protect_now;
     out.saturated_ticks += (tm.flags & saturated_bit) != 0u ? 1u : 0u;
+    out.beyond_ticks += beyond_bit != 0u && (tm.flags & beyond_bit) != 0u ? 1u : 0u;
+    out.furthest_out_rad = std::max(out.furthest_out_rad, cone - std::max(cp, out.start_cone_rad));
     out.residual_fault = out.residual_fault || (tm.flags & residual_bit) != 0u;
     if (comp.mode() != GyroMode::kFault) {
       out.worst_residual_rad = std::max(out.worst_residual_rad, tm.residual_rad.cwiseAbs().maxCoeff());

@@ -6,6 +6,7 @@
 #include "gyro/attitude.hpp"
 #include "gyro/component_config.hpp"
 #include "gyro/component_types.hpp"
+#include "gyro/config_check.hpp"
 #include "gyro/config_fields.hpp"
 #include "gyro/error_sources.hpp"
 #include "gyro/gimbal_geometry.hpp"

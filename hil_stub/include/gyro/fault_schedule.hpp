@@ -21,8 +21,9 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "gyro/attitude.hpp"
+#include "gyro/config_check.hpp"
 #include "gyro/config_fields.hpp"
-#include "gyro/gyro_model.hpp"  // ConfigCheck, Status, Vector2
 
 namespace gyro {
 

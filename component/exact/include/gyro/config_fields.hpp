@@ -17,9 +17,11 @@
 #include <cstddef>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string_view>
 #include <type_traits>
 
+#include "gyro/config_check.hpp"
 #include "gyro/status.hpp"
 
 namespace gyro {
@@ -40,12 +42,21 @@ enum class Presence : std::uint8_t {
   kImplied,   // never read under this name: set from elsewhere (the run's tick, another field)
 };
 
+inline constexpr double kNoBound = std::numeric_limits<double>::infinity();
+
+// A field's own range is [lower, upper] (both inclusive; for Rule::kPositive also > 0), in
+// `unit`, for the reason `why`. Fields that have no range of their own (a choice, a switch, a
+// nested struct) keep the infinite defaults; rules between fields are the struct's check_all().
 struct Field {
   const char* name;                      // as files, refusals and docs spell it
   Rule rule{Rule::kNone};
   Status refusal{Status::kOutOfRange};   // when the rule fails (non-finite: kNonFiniteInput)
   Presence presence{Presence::kRequired};
   const char* section{nullptr};          // the object that holds it in a file (nullptr: none)
+  double lower{-kNoBound};               // smallest accepted value (each coefficient of a vector)
+  double upper{kNoBound};                // largest accepted value
+  const char* unit{""};                  // as docs print it ("rad", "s", "1/s", "ticks")
+  const char* why{nullptr};              // the reason for the range, one short clause
 };
 
 // The table of Config (specialised beside each configuration struct).
@@ -131,24 +142,70 @@ template <class Config>
   return ok;
 }
 
-// Status::kOk when `value` keeps the field's own rule; otherwise the status to refuse with.
+namespace field_detail {
+// The refusal of `f` = v against its own rule and range (ok when it keeps them).
+[[nodiscard]] inline ConfigCheck scalar_check(const Field& f, double v, bool real) noexcept {
+  const char* why = f.why != nullptr ? f.why : "the field's own range";
+  if (real && !std::isfinite(v)) {
+    return ConfigCheck{Status::kNonFiniteInput, f.name, v, 0.0, Relation::kNotFinite, nullptr, why};
+  }
+  if (f.rule == Rule::kPositive && !(v > 0.0)) {
+    return refuse_below(f.name, v, f.lower > 0.0 ? f.lower : 0.0, f.lower > 0.0 ? nullptr : "0 (must be > 0)", why,
+                        f.refusal);
+  }
+  if ((f.rule == Rule::kNonNegative) && v < 0.0) {
+    return refuse_below(f.name, v, f.lower > 0.0 ? f.lower : 0.0, f.lower > 0.0 ? nullptr : "0", why, f.refusal);
+  }
+  if (f.rule == Rule::kNonZero && v == 0.0) {
+    return refuse_below(f.name, v, f.lower > 1.0 ? f.lower : 1.0, f.lower > 1.0 ? nullptr : "1", why, f.refusal);
+  }
+  if (v < f.lower) return refuse_below(f.name, v, f.lower, nullptr, why, f.refusal);
+  if (v > f.upper) return refuse_above(f.name, v, f.upper, nullptr, why, f.refusal);
+  return {};
+}
+}  // namespace field_detail
+
+// The refusal of `value` against the field's own rule and range; ok when it keeps them.
+// Fields with Rule::kNone are not looked at (their rules are the struct's).
+template <class M>
+[[nodiscard]] ConfigCheck field_check(const Field& f, const M& value) noexcept {
+  if (f.rule == Rule::kNone) return {};
+  if constexpr (std::is_floating_point_v<M>) {
+    return field_detail::scalar_check(f, static_cast<double>(value), true);
+  } else if constexpr (field_detail::IsEigen<M>::value) {
+    for (Eigen::Index i = 0; i < value.size(); ++i) {
+      const ConfigCheck c = field_detail::scalar_check(f, static_cast<double>(value(i)), true);
+      if (!c.ok()) return c;
+    }
+  } else if constexpr (std::is_integral_v<M> && !std::is_same_v<M, bool>) {
+    return field_detail::scalar_check(f, static_cast<double>(value), false);
+  } else if constexpr (kHasFieldTable<M>) {
+    if (f.rule == Rule::kFinite && !all_fields_finite(value)) {
+      return ConfigCheck{Status::kNonFiniteInput, f.name, 0.0, 0.0, Relation::kNotFinite, nullptr, "every number finite"};
+    }
+  }
+  return {};
+}
+
+// Status::kOk when `value` keeps the field's own rule and range; otherwise the status to refuse with.
 template <class M>
 [[nodiscard]] Status rule_status(const Field& f, const M& value) noexcept {
-  if constexpr (std::is_floating_point_v<M>) {
-    if (f.rule == Rule::kNone) return Status::kOk;
-    if (!std::isfinite(value)) return Status::kNonFiniteInput;
-    if (f.rule == Rule::kPositive && !(value > M(0))) return f.refusal;
-    if (f.rule == Rule::kNonNegative && !(value >= M(0))) return f.refusal;
-  } else if constexpr (field_detail::IsEigen<M>::value) {
-    if (f.rule == Rule::kNone) return Status::kOk;
-    if (!value.allFinite()) return Status::kNonFiniteInput;
-    if (f.rule == Rule::kNonNegative && value.minCoeff() < typename M::Scalar(0)) return f.refusal;
-  } else if constexpr (std::is_integral_v<M> && !std::is_same_v<M, bool>) {
-    if (f.rule == Rule::kNonZero && value == M(0)) return f.refusal;
-  } else if constexpr (kHasFieldTable<M>) {
-    if (f.rule == Rule::kFinite && !all_fields_finite(value)) return Status::kNonFiniteInput;
-  }
-  return Status::kOk;
+  return field_check(f, value).status;
+}
+
+// Hands the refusal of every field of `c` whose own rule or range fails, among those `Select`
+// takes (by member type), to sink(const ConfigCheck&), in table order.
+template <template <class> class Select, class Config, class Sink>
+void check_fields(const Config& c, Sink&& sink) noexcept {
+  visit_fields(
+      [&sink](const Field& f, const auto& value) noexcept {
+        using M = std::decay_t<decltype(value)>;
+        if constexpr (Select<M>::value) {
+          const ConfigCheck r = field_check(f, value);
+          if (!r.ok()) sink(r);
+        }
+      },
+      c);
 }
 
 // The first field of `c` whose own rule fails among those `Select` takes (by member type):
@@ -156,21 +213,13 @@ template <class M>
 struct FieldRefusal {
   Status status{Status::kOk};
   const char* field{nullptr};
+  ConfigCheck check{};  // the whole refusal (value, bound, rule)
 };
 template <template <class> class Select, class Config>
 [[nodiscard]] FieldRefusal first_refusal(const Config& c) noexcept {
-  FieldRefusal r;
-  visit_fields(
-      [&r](const Field& f, const auto& value) noexcept {
-        using M = std::decay_t<decltype(value)>;
-        if constexpr (Select<M>::value) {
-          if (r.status != Status::kOk) return;
-          const Status s = rule_status(f, value);
-          if (s != Status::kOk) r = {s, f.name};
-        }
-      },
-      c);
-  return r;
+  FirstRefusal first;
+  check_fields<Select>(c, first);
+  return FieldRefusal{first.first.status, first.first.field, first.first};
 }
 
 // Member selections for first_refusal: the numbers and vectors, or the counts.

@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "gyro/attitude.hpp"
+#include "gyro/config_check.hpp"
 #include "gyro/error_sources.hpp"
 #include "gyro/gimbal_geometry.hpp"
 #include "gyro/nutation.hpp"
@@ -55,33 +56,27 @@ struct FieldTable<GyroModelConfig<T>> {
     constexpr Rule kPos = Rule::kPositive, kNonNeg = Rule::kNonNegative;
     constexpr Status kRange = Status::kOutOfRange, kInertia = Status::kNonPositiveInertia;
     constexpr Presence kReq = Presence::kRequired, kOpt = Presence::kOptional;
-    v(Field{"pitch_inertia", kPos, kInertia, kReq, "rotor"}, c.pitch_inertia...);
-    v(Field{"yaw_inertia", kPos, kInertia, kReq, "rotor"}, c.yaw_inertia...);
-    v(Field{"spin_inertia", kPos, kInertia, kReq, "rotor"}, c.spin_inertia...);
-    v(Field{"friction", kNonNeg, Status::kNegativeFriction, kReq, "rotor"}, c.friction...);
-    v(Field{"gimbal_cone_limit_rad", kPos, kRange, kReq, "limits"}, c.gimbal_cone_limit_rad...);
-    v(Field{"pitch_gimbal_limit_rad", kNonNeg, kRange, kOpt, "limits"}, c.pitch_gimbal_limit_rad...);
-    v(Field{"yaw_gimbal_limit_rad", kNonNeg, kRange, kOpt, "limits"}, c.yaw_gimbal_limit_rad...);
-    v(Field{"max_pitch_rate_rad_s", kPos, kRange, kReq, "limits"}, c.max_pitch_rate_rad_s...);
-    v(Field{"max_yaw_rate_rad_s", kPos, kRange, kReq, "limits"}, c.max_yaw_rate_rad_s...);
-    v(Field{"small_angle_limit_rad", kPos, kRange, kOpt, "limits"}, c.small_angle_limit_rad...);
-    v(Field{"gravity", kPos, kRange}, c.gravity...);
+    constexpr const char* kUnits = "consistent units: products with rates and spins stay within float's range";
+    v(Field{"pitch_inertia", kPos, kInertia, kReq, "rotor", 1e-12, 1e12, "inertia", kUnits}, c.pitch_inertia...);
+    v(Field{"yaw_inertia", kPos, kInertia, kReq, "rotor", 1e-12, 1e12, "inertia", kUnits}, c.yaw_inertia...);
+    v(Field{"spin_inertia", kPos, kInertia, kReq, "rotor", 1e-12, 1e12, "inertia", kUnits}, c.spin_inertia...);
+    v(Field{"friction", kNonNeg, Status::kNegativeFriction, kReq, "rotor", 0.0, 1e12, "torque/(rad/s)", kUnits}, c.friction...);
+    v(Field{"gimbal_cone_limit_rad", kPos, kRange, kReq, "limits", 1e-3, 3.141592653589793, "rad", "a cone of a milliradian to below pi"}, c.gimbal_cone_limit_rad...);
+    v(Field{"pitch_gimbal_limit_rad", kNonNeg, kRange, kOpt, "limits", 0.0, 3.141592653589793, "rad", "0 (none) or below pi"}, c.pitch_gimbal_limit_rad...);
+    v(Field{"yaw_gimbal_limit_rad", kNonNeg, kRange, kOpt, "limits", 0.0, 3.141592653589793, "rad", "0 (none) or below pi"}, c.yaw_gimbal_limit_rad...);
+    v(Field{"max_pitch_rate_rad_s", kPos, kRange, kReq, "limits", 1e-6, 1e4, "rad/s", "the model's slew limit"}, c.max_pitch_rate_rad_s...);
+    v(Field{"max_yaw_rate_rad_s", kPos, kRange, kReq, "limits", 1e-6, 1e4, "rad/s", "the model's slew limit"}, c.max_yaw_rate_rad_s...);
+    v(Field{"small_angle_limit_rad", kPos, kRange, kOpt, "limits", 1e-6, 1.0, "rad", "the report's 0.01; the flag means nothing beyond a radian"}, c.small_angle_limit_rad...);
+    v(Field{"gravity", kPos, kRange, kReq, nullptr, 1e-3, 1e4, "accel", "g in the units of the accelerations: 9.80665 m/s^2, 32.17 ft/s^2"}, c.gravity...);
     v(Field{"errors", Rule::kFinite, kRange, kOpt}, c.errors...);
     v(Field{"torquer_axes", Rule::kNone, kRange, Presence::kImplied}, c.torquer_axes...);
   }
 };
 
-// Names the configuration field a refusal is about (nullptr when accepted).
-struct ConfigCheck {
-  Status status{Status::kOk};
-  const char* field{nullptr};
-  [[nodiscard]] constexpr bool ok() const noexcept { return status == Status::kOk; }
-};
-
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GyroModelConfig<T>& c) noexcept {
   const FieldRefusal r = first_refusal<RealFields>(c);
-  if (r.status != Status::kOk) return {r.status, r.field};
+  if (r.status != Status::kOk) return r.check;
   if (!(c.gimbal_cone_limit_rad < kPi<T>)) return {Status::kOutOfRange, "gimbal_cone_limit_rad"};
   if (!(c.pitch_gimbal_limit_rad < kPi<T>)) return {Status::kOutOfRange, "pitch_gimbal_limit_rad"};
   if (!(c.yaw_gimbal_limit_rad < kPi<T>)) return {Status::kOutOfRange, "yaw_gimbal_limit_rad"};

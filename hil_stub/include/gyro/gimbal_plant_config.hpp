@@ -105,13 +105,13 @@ struct FieldTable<GimbalPlantConfig<T>> {
     v(Field{"spin_servo_bandwidth_rad_s", kNonNeg, kRange, kOpt}, c.spin_servo_bandwidth_rad_s...);
     v(Field{"spin_down_time_s", kNonNeg, kRange, kOpt}, c.spin_down_time_s...);
     v(Field{"mass_unbalance", Rule::kFinite, kRange, kOpt}, c.mass_unbalance...);
-    v(Field{"stop_cone_rad", kPos, kRange, kImplied}, c.stop_cone_rad...);
-    v(Field{"stop_restitution", kNonNeg, kRange, kOpt}, c.stop_restitution...);
+    v(Field{"stop_cone_rad", kPos, kRange, kImplied, nullptr, 1e-3, 1.3962634015954636, "rad", "1 mrad to 80 deg: gimbal lock out of reach"}, c.stop_cone_rad...);
+    v(Field{"stop_restitution", kNonNeg, kRange, kOpt, nullptr, 0.0, 1.0, "", "0 a dead stop to 1 an elastic bounce"}, c.stop_restitution...);
     v(Field{"torque_axes", Rule::kNone, kRange, kOpt}, c.torque_axes...);
     v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt}, c.max_body_rate_rad_s...);
     v(Field{"max_torque", kPos, kRange, kOpt}, c.max_torque...);
     v(Field{"max_specific_force", kPos, kRange, kOpt}, c.max_specific_force...);
-    v(Field{"max_substep_phase_rad", kPos, kRange, kOpt}, c.max_substep_phase_rad...);
+    v(Field{"max_substep_phase_rad", kPos, kRange, kOpt, nullptr, 1e-6, 2.0, "rad", "the sub-step rule (docs/gimbal-plant.md)"}, c.max_substep_phase_rad...);
   }
 };
 
@@ -141,7 +141,7 @@ inline constexpr T kMaxInertiaRatio = T(1e6);
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GimbalPlantConfig<T>& c) noexcept {
   const FieldRefusal r = first_refusal<RealFields>(c);
-  if (r.status != Status::kOk) return {r.status, r.field};
+  if (r.status != Status::kOk) return r.check;
   if (!(c.spin_inertia <= T(2) * c.rotor_transverse_inertia)) {
     return {Status::kOutOfRange, "rotor_transverse_inertia"};  // J0 <= 2A for a rigid rotor
   }

@@ -42,18 +42,18 @@ struct FieldTable<PickoffModel<T>> {
     constexpr Rule kNonNeg = Rule::kNonNegative;
     constexpr Status kRange = Status::kOutOfRange;
     constexpr Presence kOpt = Presence::kOptional;
-    v(Field{"pickoff.lsb_rad", kNonNeg, kRange, kOpt}, c.lsb_rad...);
-    v(Field{"pickoff.bias_rad", Rule::kFinite, kRange, kOpt}, c.bias_rad...);
-    v(Field{"pickoff.lag_s", kNonNeg, kRange, kOpt}, c.lag_s...);
-    v(Field{"pickoff.noise_rad", kNonNeg, kRange, kOpt}, c.noise_rad...);
-    v(Field{"pickoff.range_rad", kNonNeg, kRange, kOpt}, c.range_rad...);
+    v(Field{"pickoff.lsb_rad", kNonNeg, kRange, kOpt, nullptr, 0.0, 0.1, "rad", "0 (none) to 0.1 rad: a 4-bit converter over +-pi/2"}, c.lsb_rad...);
+    v(Field{"pickoff.bias_rad", Rule::kFinite, kRange, kOpt, nullptr, -0.1, 0.1, "rad", "within 0.1 rad: beyond, no pickoff to fly with"}, c.bias_rad...);
+    v(Field{"pickoff.lag_s", kNonNeg, kRange, kOpt, nullptr, 0.0, 1.0, "s", "0 (none) to 1 s"}, c.lag_s...);
+    v(Field{"pickoff.noise_rad", kNonNeg, kRange, kOpt, nullptr, 0.0, 0.1, "rad", "0 (none) to 0.1 rad, 1 sigma"}, c.noise_rad...);
+    v(Field{"pickoff.range_rad", kNonNeg, kRange, kOpt, nullptr, 0.0, 1.5707963267948966, "rad", "0 (none) or up to pi/2: no gimbal angle of the readout is beyond"}, c.range_rad...);
   }
 };
 
 template <typename T>
 [[nodiscard]] ConfigCheck check(const PickoffModel<T>& p) noexcept {
   const FieldRefusal r = first_refusal<RealFields>(p);
-  if (r.status != Status::kOk) return {r.status, r.field};
+  if (r.status != Status::kOk) return r.check;
   if (p.range_rad > T(0) && p.lsb_rad > p.range_rad) return {Status::kOutOfRange, "pickoff.lsb_rad"};
   return {};
 }

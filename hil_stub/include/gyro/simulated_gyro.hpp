@@ -87,8 +87,8 @@ struct FieldTable<SimulatedGyroConfig<T>> {
     v(Field{"spin_down_time_constant_s", Rule::kNone, kRange, kOpt, "rotor"}, c.spin_down_time_constant_s...);
     v(Field{"gimbal_stop_rad", Rule::kNone, kRange, kOpt, "limits"}, c.gimbal_stop_rad...);
     v(Field{"gimbal", Rule::kNone, kRange, kImplied}, c.gimbal...);
-    v(Field{"tick_s", Rule::kPositive, Status::kNonPositiveStep, kImplied}, c.tick_s...);
-    v(Field{"spin_hz", Rule::kPositive, kRange, kReq, "rotor"}, c.spin_hz...);
+    v(Field{"tick_s", Rule::kPositive, Status::kNonPositiveStep, kImplied, nullptr, 1e-6, 1.0, "s", "the SIL loop's tick"}, c.tick_s...);
+    v(Field{"spin_hz", Rule::kPositive, kRange, kReq, "rotor", 1e-3, 1e5, "Hz", "a rotor at power-up spins at up to 100 kHz"}, c.spin_hz...);
     v(Field{"has_spin_readback", Rule::kNone, kRange, kReq, "rotor"}, c.has_spin_readback...);
     v(Field{"pickoff", Rule::kNone, kRange, kOpt}, c.pickoff...);
     v(Field{"torquer", Rule::kNone, kRange, kOpt}, c.torquer...);

@@ -24,15 +24,15 @@ struct FieldTable<TorquerModel<T>> {
   static constexpr bool kDefined = true;
   template <class Visit, class... C>
   static constexpr void visit(Visit&& v, C&... c) {
-    v(Field{"torquer.scale_factor", Rule::kFinite, Status::kOutOfRange, Presence::kOptional}, c.scale_factor...);
-    v(Field{"torquer.max_torque", Rule::kNonNegative, Status::kOutOfRange, Presence::kOptional}, c.max_torque...);
+    v(Field{"torquer.scale_factor", Rule::kFinite, Status::kOutOfRange, Presence::kOptional, nullptr, 0.1, 10.0, "", "a scale error within a factor 10 (a dead torquer is a fault)"}, c.scale_factor...);
+    v(Field{"torquer.max_torque", Rule::kNonNegative, Status::kOutOfRange, Presence::kOptional, nullptr, 0.0, 1e12, "torque", "0 (none) or what the electronics drive"}, c.max_torque...);
   }
 };
 
 template <typename T>
 [[nodiscard]] ConfigCheck check(const TorquerModel<T>& t) noexcept {
   const FieldRefusal r = first_refusal<RealFields>(t);
-  return {r.status, r.field};
+  return r.check;
 }
 
 template <typename T>

@@ -1,9 +1,16 @@
-// Validation of the component's configuration: refuses with the first bad field's name.
+// Validation of the component's configuration: the contract of docs/component.md
+// ("Configuration contract"). Every field has both bounds (its row in the field table,
+// gyro/component_types.hpp); the rules here refuse fields that cannot work together. check()
+// returns the first refusal, check_all() hands every one to a sink; each names the field, its
+// value, the bound and the rule (gyro/config_check.hpp formats it).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gyro/component_types.hpp"
+#include "gyro/config_check.hpp"
 #include "gyro/exact_step_check.hpp"
 #include "gyro/gyro_model.hpp"
 
@@ -18,19 +25,135 @@ template <typename T>
                           kFields);
 }
 
+// The contract's constants, named where a rule uses them.
+inline constexpr double kResidualLsbs = 2.0;        // a residual limit above 2 LSBs of rounding
+// and 9 sigma of the pickoff noise: 6 sigma of the difference of two readings (sigma sqrt 2),
+// about 1e-9 a reading beyond it.
+inline constexpr double kResidualNoiseSigmas = 9.0;
+inline constexpr double kStepRateTicks = 2.0;       // a reading may move 2 ticks at the rate limit
+inline constexpr double kAuthorityFraction = 0.5;   // the torquer precesses at >= half the rate limit
+inline constexpr double kNutationShare = 0.1;       // a full-torque nutation within 1/10 of the small-angle limit
+inline constexpr double kMaxNutationPhasePerTick = 1e3;  // rad; beyond, float's phase keeps < 4 digits
+
+namespace component_detail {
+// The count that lasts `seconds` at tick `tick_s`.
+[[nodiscard]] inline double ticks_in(double seconds, double tick_s) noexcept { return std::floor(seconds / tick_s); }
+}  // namespace component_detail
+
+// Every rule `c` breaks, to sink(const ConfigCheck&), in the order check() takes them: each
+// field's own rule and range, then (once every field is within its own range: a rule between
+// fields says nothing of a value out of range) the rules between fields, then the exact step.
+template <typename T, class Sink>
+void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
+  bool own_ok = true;
+  auto own = [&](const ConfigCheck& r) noexcept {
+    own_ok = false;
+    sink(r);
+  };
+  check_fields<RealFields>(c, own);
+  check_fields<CountFields>(c, own);
+  if (!own_ok) return;
+
+  const double tick = static_cast<double>(c.tick_s);
+  const double j1 = static_cast<double>(c.pitch_inertia), j2 = static_cast<double>(c.yaw_inertia);
+  const double h = 2.0 * 3.14159265358979323846 * static_cast<double>(c.nominal_spin_hz) * static_cast<double>(c.spin_inertia);
+  const double rate = std::max(static_cast<double>(c.max_pitch_rate_rad_s), static_cast<double>(c.max_yaw_rate_rad_s));
+  const double cone = static_cast<double>(c.gimbal_cone_limit_rad);
+  const double range = static_cast<double>(c.pickoff_range_rad);
+  const double lsb = static_cast<double>(c.pickoff_lsb_rad), noise = static_cast<double>(c.pickoff_noise_rad);
+  const double small = static_cast<double>(c.small_angle_limit_rad);
+  auto below = [&sink](const char* f, double v, double bound, const char* what, const char* why) noexcept {
+    if (v < bound) sink(refuse_below(f, v, bound, what, why));
+  };
+  auto above = [&sink](const char* f, double v, double bound, const char* what, const char* why) noexcept {
+    if (v > bound) sink(refuse_above(f, v, bound, what, why));
+  };
+
+  // Spin.
+  if (!(c.min_spin_hz < c.nominal_spin_hz)) {
+    sink(refuse_above("min_spin_hz", static_cast<double>(c.min_spin_hz), static_cast<double>(c.nominal_spin_hz),
+                      "nominal_spin_hz", "the nominal gyro would be spin-low from its first tick"));
+  }
+  // Rates against the tick, the torquer and H.
+  above("max_pitch_rate_rad_s", static_cast<double>(c.max_pitch_rate_rad_s), small / tick,
+        "small_angle_limit_rad / tick_s", "one tick's slew would exceed the small-angle limit");
+  above("max_yaw_rate_rad_s", static_cast<double>(c.max_yaw_rate_rad_s), small / tick,
+        "small_angle_limit_rad / tick_s", "one tick's slew would exceed the small-angle limit");
+  below("max_torque", static_cast<double>(c.max_torque), kAuthorityFraction * h * rate,
+        "H x the larger rate limit / 2", "the torquer could not precess at half the rate limit");
+  above("max_torque", static_cast<double>(c.max_torque), kNutationShare * small * h * h / std::max(j1, j2),
+        "small_angle_limit x H^2 / J / 10", "a full-torque step would start a nutation beyond a tenth of the small-angle limit");
+  // Caging loop and stop protection.
+  above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), 1.0 / tick, "1 / tick_s",
+        "gain x tick > 1: the discrete caging loop overshoots");
+  // Cone, margin, pickoff range.
+  above("gimbal_cone_limit_rad", cone, range, "pickoff_range_rad",
+        "the pickoffs would saturate inside the cone: the gimbal could pass it unseen");
+  below("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), rate * tick,
+        "one tick at the rate limit", "the gimbal could cross the protection zone within a tick");
+  if (!(c.gimbal_stop_margin_rad < c.gimbal_cone_limit_rad)) {
+    sink(refuse_above("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), cone,
+                      "gimbal_cone_limit_rad", "no cone left to fly in"));
+  }
+  // Pickoff validation.
+  above("max_pickoff_step_rad", static_cast<double>(c.max_pickoff_step_rad), range, "pickoff_range_rad",
+        "a step larger than the range believes any reading");
+  // A full-torque step's nutation: amplitude about T J / H^2 (the steady rate T / H over the
+  // nutation rate H / J).
+  const double nutation_step = static_cast<double>(c.max_torque) * std::max(j1, j2) / (h * h);
+  below("max_pickoff_step_rad", static_cast<double>(c.max_pickoff_step_rad),
+        kStepRateTicks * (rate * tick + nutation_step), "2 x (a tick at the rate limit + a full-torque nutation)",
+        "a slew at the rate limit would be refused as a jump");
+  below("max_pickoff_step_rad", static_cast<double>(c.max_pickoff_step_rad), 2.0 * lsb + kResidualNoiseSigmas * noise,
+        "2 pickoff LSBs + 9 sigma of noise", "a gyro at rest would be refused as jumping");
+  // Residual monitor against the pickoff's resolution and noise, and what the scalar holds.
+  below("residual_limit_rad", static_cast<double>(c.residual_limit_rad), kResidualLsbs * lsb, "2 pickoff LSBs",
+        "a healthy gyro would latch a fault");
+  below("residual_limit_rad", static_cast<double>(c.residual_limit_rad), kResidualNoiseSigmas * noise,
+        "9 sigma of pickoff noise", "a healthy gyro would latch a fault");
+  below("residual_limit_rad", static_cast<double>(c.residual_limit_rad), rate * tick, "one tick at the rate limit",
+        "a reading early or late by part of a tick would latch a fault");
+  below("residual_limit_rad", static_cast<double>(c.residual_limit_rad),
+        64.0 * static_cast<double>(std::numeric_limits<T>::epsilon()) * range, "64 epsilons of the pickoff range",
+        "the scalar's rounding of a reading would latch a fault");
+  if (!(c.residual_limit_rad < c.gimbal_cone_limit_rad)) {
+    sink(refuse_above("residual_limit_rad", static_cast<double>(c.residual_limit_rad), cone, "gimbal_cone_limit_rad",
+                      "every reading within the cone would pass: no fault detected"));
+  }
+  // Navigation rates: the rates flown are believed, and one tick's turn is no alias.
+  below("max_body_rate_rad_s", static_cast<double>(c.max_body_rate_rad_s), rate, "the larger rate limit",
+        "a body turning as the gyro slews would be refused: a lock-out");
+  above("max_body_rate_rad_s", static_cast<double>(c.max_body_rate_rad_s), 3.14159265358979323846 / tick,
+        "pi / tick_s", "the body's turn in one tick would alias");
+  // Counts against the stated longest time.
+  const double longest = component_detail::ticks_in(kLongestConfiguredTime_s, tick);
+  const char* const kLongest = "10 s of ticks (the longest configured time)";
+  const char* const kWhy = "longer than the contract's longest time";
+  above("residual_persistence_ticks", static_cast<double>(c.residual_persistence_ticks), longest, kLongest, kWhy);
+  above("invalid_persistence_ticks", static_cast<double>(c.invalid_persistence_ticks), longest, kLongest, kWhy);
+  above("spin_low_persistence_ticks", static_cast<double>(c.spin_low_persistence_ticks), longest, kLongest, kWhy);
+  above("torquer_fail_persistence_ticks", static_cast<double>(c.torquer_fail_persistence_ticks), longest, kLongest,
+        kWhy);
+  above("uncage_settle_ticks", static_cast<double>(c.uncage_settle_ticks), longest, kLongest,
+        "the torquers would stay off longer than the contract's longest time");
+  above("max_tick_gap", static_cast<double>(c.max_tick_gap), longest, kLongest, kWhy);
+  above("input_persistence_ticks", static_cast<double>(c.input_persistence_ticks), longest, kLongest, kWhy);
+  below("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), 1.0 / kLongestConfiguredTime_s,
+        "1 / (the longest configured time)", "caging would not pull in within the longest time");
+  // The tick against the nutation: its phase per tick stays representable.
+  const double nutation_rad_s = h / std::sqrt(j1 * j2);
+  above("tick_s", tick, kMaxNutationPhasePerTick / nutation_rad_s, "1000 rad of nutation phase",
+        "the nutation's phase per tick would keep fewer than 4 digits in float");
+  const ConfigCheck step = check_nominal_step(c);
+  if (!step.ok()) sink(step);
+}
+
+// The first refusal of check_all() (ok when none).
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GyroComponentConfig<T>& c) noexcept {
-  const FieldRefusal real = first_refusal<RealFields>(c);
-  if (real.status != Status::kOk) return {real.status, real.field};
-  if (!(c.min_spin_hz < c.nominal_spin_hz)) return {Status::kOutOfRange, "min_spin_hz"};
-  // The caging loop is a discrete first-order loop: gain * tick <= 1 keeps it monotone.
-  if (c.cage_gain_1_s * c.tick_s > T(1)) return {Status::kOutOfRange, "cage_gain_1_s"};
-  if (!(c.gimbal_cone_limit_rad <= kPi<T> / T(2))) return {Status::kOutOfRange, "gimbal_cone_limit_rad"};
-  if (!(c.gimbal_stop_margin_rad < c.gimbal_cone_limit_rad)) return {Status::kOutOfRange, "gimbal_stop_margin_rad"};
-  if (c.estimator_gain > T(1)) return {Status::kOutOfRange, "estimator_gain"};
-  const FieldRefusal count = first_refusal<CountFields>(c);
-  if (count.status != Status::kOk) return {count.status, count.field};
-  return check_nominal_step(c);
+  FirstRefusal first;
+  check_all(c, first);
+  return first.first;
 }
 
 // The exact-dynamics model the component predicts with: the configured rotor, its limits,

@@ -115,7 +115,17 @@ struct GyroComponentConfig {
   std::uint32_t max_tick_gap{8};               // largest tick-count jump bridged as lost ticks
   std::uint32_t input_persistence_ticks{50};   // unusable guidance input -> fault
   T max_body_rate_rad_s{T(100)};               // navigation rates beyond this are not believed
+  // What the board promises of its pickoffs (docs/component.md, "Configuration contract"):
+  // 0 = not stated (the rules that use them are then not applied). check() holds the residual
+  // limit and the pickoff step above them.
+  T pickoff_lsb_rad{};                         // the pickoff's quantisation step
+  T pickoff_noise_rad{};                       // 1-sigma noise of one reading
 };
+
+// The stated longest time of the contract: no persistence, settle time or bridged gap may
+// last longer (a fault left undetected, or the torquers left off, for longer than this is no
+// protection in a flight of tens of seconds); the slowest caging loop pulls in within it.
+inline constexpr double kLongestConfiguredTime_s = 10.0;
 
 // The fields of GyroComponentConfig (gyro/config_fields.hpp); check() adds the cross-field rules.
 template <typename T>
@@ -124,36 +134,76 @@ struct FieldTable<GyroComponentConfig<T>> {
   template <class Visit, class... C>
   static constexpr void visit(Visit&& v, C&... c) {
     constexpr Rule kPos = Rule::kPositive, kNonNeg = Rule::kNonNegative, kCount = Rule::kNonZero;
+    constexpr Rule kAny = Rule::kFinite;
     constexpr Status kRange = Status::kOutOfRange, kInertia = Status::kNonPositiveInertia;
-    constexpr Presence kOpt = Presence::kOptional;
-    v(Field{"tick_s", kPos, Status::kNonPositiveStep, Presence::kImplied}, c.tick_s...);
-    v(Field{"pitch_inertia", kPos, kInertia}, c.pitch_inertia...);
-    v(Field{"yaw_inertia", kPos, kInertia}, c.yaw_inertia...);
-    v(Field{"spin_inertia", kPos, kInertia}, c.spin_inertia...);
-    v(Field{"friction", kNonNeg, Status::kNegativeFriction}, c.friction...);
-    v(Field{"nominal_spin_hz", kPos, kRange}, c.nominal_spin_hz...);
-    v(Field{"min_spin_hz", kNonNeg, kRange}, c.min_spin_hz...);
+    constexpr Presence kReq = Presence::kRequired, kOpt = Presence::kOptional;
+    constexpr const char* kNo = nullptr;
+    constexpr double kCountMax = 4294967295.0;  // the counters' range; the longest time bounds them (check_all)
+    constexpr const char* kUnits = "consistent units: products with rates and spins stay within float's range";
+    constexpr const char* kTime = "with the tick, at most the longest configured time (10 s)";
+    v(Field{"tick_s", kPos, Status::kNonPositiveStep, Presence::kImplied, kNo, 1e-5, 0.1, "s",
+            "a rate group of 10 Hz to 100 kHz"}, c.tick_s...);
+    v(Field{"pitch_inertia", kPos, kInertia, kReq, kNo, 1e-12, 1e12, "inertia", kUnits}, c.pitch_inertia...);
+    v(Field{"yaw_inertia", kPos, kInertia, kReq, kNo, 1e-12, 1e12, "inertia", kUnits}, c.yaw_inertia...);
+    v(Field{"spin_inertia", kPos, kInertia, kReq, kNo, 1e-12, 1e12, "inertia", kUnits}, c.spin_inertia...);
+    v(Field{"friction", kNonNeg, Status::kNegativeFriction, kReq, kNo, 0.0, 1e12, "torque/(rad/s)", kUnits},
+      c.friction...);
+    v(Field{"nominal_spin_hz", kPos, kRange, kReq, kNo, 1.0, 1e5, "Hz", "a gyro rotor spins at 1 Hz to 100 kHz"},
+      c.nominal_spin_hz...);
+    v(Field{"min_spin_hz", kNonNeg, kRange, kReq, kNo, 0.0, 1e5, "Hz", "below nominal_spin_hz"}, c.min_spin_hz...);
     v(Field{"use_spin_readback", Rule::kNone, kRange, kOpt}, c.use_spin_readback...);
-    v(Field{"max_pitch_rate_rad_s", kPos, kRange}, c.max_pitch_rate_rad_s...);
-    v(Field{"max_yaw_rate_rad_s", kPos, kRange}, c.max_yaw_rate_rad_s...);
-    v(Field{"max_torque", kPos, kRange}, c.max_torque...);
+    v(Field{"max_pitch_rate_rad_s", kPos, kRange, kReq, kNo, 1e-4, 100.0, "rad/s",
+            "a slew limit of 0.006 deg/s to 100 rad/s; one tick's turn within the small-angle limit"},
+      c.max_pitch_rate_rad_s...);
+    v(Field{"max_yaw_rate_rad_s", kPos, kRange, kReq, kNo, 1e-4, 100.0, "rad/s",
+            "a slew limit of 0.006 deg/s to 100 rad/s; one tick's turn within the small-angle limit"},
+      c.max_yaw_rate_rad_s...);
+    v(Field{"max_torque", kPos, kRange, kReq, kNo, 1e-12, 1e12, "torque",
+            "precesses at half the larger rate limit or more; a full-torque step's nutation within a tenth of the small-angle limit"},
+      c.max_torque...);
     v(Field{"friction_compensation", Rule::kNone, kRange, kOpt}, c.friction_compensation...);
-    v(Field{"cage_gain_1_s", kNonNeg, kRange}, c.cage_gain_1_s...);
-    v(Field{"gimbal_cone_limit_rad", kPos, kRange}, c.gimbal_cone_limit_rad...);
-    v(Field{"gimbal_stop_margin_rad", kNonNeg, kRange}, c.gimbal_stop_margin_rad...);
-    v(Field{"small_angle_limit_rad", kPos, kRange, kOpt}, c.small_angle_limit_rad...);
-    v(Field{"pickoff_range_rad", kPos, kRange}, c.pickoff_range_rad...);
-    v(Field{"max_pickoff_step_rad", kPos, kRange}, c.max_pickoff_step_rad...);
-    v(Field{"estimator_gain", kNonNeg, kRange}, c.estimator_gain...);
-    v(Field{"residual_limit_rad", kPos, kRange}, c.residual_limit_rad...);
-    v(Field{"residual_persistence_ticks", kCount, kRange}, c.residual_persistence_ticks...);
-    v(Field{"invalid_persistence_ticks", kCount, kRange}, c.invalid_persistence_ticks...);
-    v(Field{"spin_low_persistence_ticks", kCount, kRange}, c.spin_low_persistence_ticks...);
-    v(Field{"torquer_fail_persistence_ticks", kCount, kRange}, c.torquer_fail_persistence_ticks...);
-    v(Field{"uncage_settle_ticks", Rule::kNone, kRange}, c.uncage_settle_ticks...);
-    v(Field{"max_tick_gap", kCount, kRange, kOpt}, c.max_tick_gap...);
-    v(Field{"input_persistence_ticks", kCount, kRange, kOpt}, c.input_persistence_ticks...);
-    v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt}, c.max_body_rate_rad_s...);
+    v(Field{"cage_gain_1_s", kPos, kRange, kReq, kNo, 0.1, 1e5, "1/s",
+            "caging pulls in within 10 s; gain x tick <= 1 (a monotone discrete loop); stop protection's gain"},
+      c.cage_gain_1_s...);
+    v(Field{"gimbal_cone_limit_rad", kPos, kRange, kReq, kNo, 1e-3, 1.5707963267948966, "rad",
+            "within the pickoff range; the readout's pitch is within +-pi/2"},
+      c.gimbal_cone_limit_rad...);
+    v(Field{"gimbal_stop_margin_rad", kNonNeg, kRange, kReq, kNo, 0.0, 1.5707963267948966, "rad",
+            "at least one tick at the rate limit; below the cone limit"},
+      c.gimbal_stop_margin_rad...);
+    v(Field{"small_angle_limit_rad", kPos, kRange, kOpt, kNo, 1e-4, 0.1, "rad",
+            "the report's 0.01: beyond 0.1 rad the small-angle step keeps fewer than 3 digits"},
+      c.small_angle_limit_rad...);
+    v(Field{"pickoff_range_rad", kPos, kRange, kReq, kNo, 1e-3, 1.5707963267948966, "rad",
+            "covers the cone limit; no gimbal angle of the readout is beyond pi/2"},
+      c.pickoff_range_rad...);
+    v(Field{"max_pickoff_step_rad", kPos, kRange, kReq, kNo, 1e-7, 1.5707963267948966, "rad",
+            "above 2 ticks at the rate limit plus a full-torque nutation, and the pickoff's resolution and noise; within the range"},
+      c.max_pickoff_step_rad...);
+    v(Field{"estimator_gain", kNonNeg, kRange, kReq, kNo, 0.0, 1.0, "", "a fraction of the residual per tick"},
+      c.estimator_gain...);
+    v(Field{"residual_limit_rad", kPos, kRange, kReq, kNo, 1e-7, 1.5707963267948966, "rad",
+            "above 2 pickoff LSBs, 9 sigma of its noise and a tick at the rate limit; below the cone limit"},
+      c.residual_limit_rad...);
+    v(Field{"residual_persistence_ticks", kCount, kRange, kReq, kNo, 1.0, kCountMax, "ticks", kTime},
+      c.residual_persistence_ticks...);
+    v(Field{"invalid_persistence_ticks", kCount, kRange, kReq, kNo, 1.0, kCountMax, "ticks", kTime},
+      c.invalid_persistence_ticks...);
+    v(Field{"spin_low_persistence_ticks", kCount, kRange, kReq, kNo, 1.0, kCountMax, "ticks", kTime},
+      c.spin_low_persistence_ticks...);
+    v(Field{"torquer_fail_persistence_ticks", kCount, kRange, kReq, kNo, 1.0, kCountMax, "ticks", kTime},
+      c.torquer_fail_persistence_ticks...);
+    v(Field{"uncage_settle_ticks", kAny, kRange, kReq, kNo, 0.0, kCountMax, "ticks", kTime}, c.uncage_settle_ticks...);
+    v(Field{"max_tick_gap", kCount, kRange, kOpt, kNo, 1.0, kCountMax, "ticks", kTime}, c.max_tick_gap...);
+    v(Field{"input_persistence_ticks", kCount, kRange, kOpt, kNo, 1.0, kCountMax, "ticks", kTime},
+      c.input_persistence_ticks...);
+    v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt, kNo, 1e-4, 1e4, "rad/s",
+            "at least the rate limits (a body turning as the gyro slews is believed); at most pi per tick"},
+      c.max_body_rate_rad_s...);
+    v(Field{"pickoff_lsb_rad", kNonNeg, kRange, kOpt, kNo, 0.0, 0.1, "rad",
+            "the board's quantisation step (0: not stated)"}, c.pickoff_lsb_rad...);
+    v(Field{"pickoff_noise_rad", kNonNeg, kRange, kOpt, kNo, 0.0, 0.1, "rad",
+            "the board's 1-sigma reading noise (0: not stated)"}, c.pickoff_noise_rad...);
   }
 };
 

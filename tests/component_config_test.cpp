@@ -1,0 +1,233 @@
+// The configuration contract (docs/component.md, "Configuration contract"): every field of
+// the component's configuration has both bounds, rules between fields refuse what cannot work
+// together, a refusal names the field, the value, the bound and the rule, and check_all()
+// gives every violated rule.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "gyro/component_config.hpp"
+#include "gyro/seeker_example.hpp"
+#include "gyro/sil_contract.hpp"
+
+namespace gyro {
+namespace {
+
+using Seeker = SeekerExample<double>;
+
+std::string message(const ConfigCheck& c) {
+  char buf[400];
+  (void)format_refusal(c, "component.", buf, sizeof buf);
+  return buf;
+}
+
+ConfigCheckList<32> all_of(const GyroComponentConfig<double>& c) {
+  ConfigCheckList<32> all;
+  check_all(c, all);
+  return all;
+}
+
+TEST(ComponentConfig, GivenTheSeekerExampleWHENCheckedTHENNoRuleIsBroken) {
+  EXPECT_TRUE(all_of(Seeker::component()).empty());
+  GyroComponentConfig<float> f;
+  cast_fields(Seeker::component(), f);
+  ConfigCheckList<32> all;
+  check_all(f, all);
+  EXPECT_TRUE(all.empty());
+  ConfigCheckList<8> pair;
+  check_against_hardware(Seeker::stub(), Seeker::component(), pair);
+  EXPECT_TRUE(pair.empty());
+}
+
+TEST(ComponentConfig, GivenEveryNumberFieldWHENListedTHENItHasBothBounds) {
+  const GyroComponentConfig<double> c{};
+  visit_fields(
+      [](const Field& f, const auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<M, bool>) {
+          EXPECT_EQ(f.rule, Rule::kNone) << f.name;
+        } else {
+          EXPECT_NE(f.rule, Rule::kNone) << f.name;
+          EXPECT_TRUE(std::isfinite(f.lower) && std::isfinite(f.upper)) << f.name;
+          EXPECT_LE(f.lower, f.upper) << f.name;
+          EXPECT_NE(f.why, nullptr) << f.name;
+        }
+      },
+      c);
+}
+
+TEST(ComponentConfig, GivenASettleOf2To32TicksTHENRefusedAgainstLongestTime) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.uncage_settle_ticks = 4294967295u;
+  const ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "uncage_settle_ticks");
+  EXPECT_EQ(r.status, Status::kOutOfRange);
+  EXPECT_EQ(r.value, 4294967295.0);
+  EXPECT_EQ(r.bound, 20000.0);  // 10 s at 2 kHz
+  EXPECT_EQ(r.relation, Relation::kAbove);
+  EXPECT_EQ(message(r),
+            "component.uncage_settle_ticks = 4.29497e+09 is above 10 s of ticks (the longest configured time) "
+            "(20000): the torquers would stay off longer than the contract's longest time");
+}
+
+TEST(ComponentConfig, GivenASubnormalBodyRateLimitTHENRefusedAsALockOut) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.max_body_rate_rad_s = 5e-324;
+  const ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "max_body_rate_rad_s");
+  EXPECT_EQ(r.value, 5e-324);
+  EXPECT_EQ(r.bound, 1e-4);
+  EXPECT_EQ(r.relation, Relation::kBelow);
+  // Within its own range but below the rates flown: the rule between fields says why.
+  c.max_body_rate_rad_s = 0.5;
+  const ConfigCheck flown = check(c);
+  ASSERT_STREQ(flown.field, "max_body_rate_rad_s");
+  EXPECT_EQ(flown.bound, 1.0);
+  EXPECT_EQ(message(flown),
+            "component.max_body_rate_rad_s = 0.5 is below the larger rate limit (1): a body turning as the gyro "
+            "slews would be refused: a lock-out");
+}
+
+TEST(ComponentConfig, GivenAResidualLimitBelowTwoLsbsTHENRefusedNamingTheRule) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.pickoff_lsb_rad = 6.103515625e-05;
+  EXPECT_TRUE(check(c).ok());
+  c.residual_limit_rad = 1e-5;
+  const ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "residual_limit_rad");
+  EXPECT_EQ(r.bound, 2 * 6.103515625e-05);
+  EXPECT_EQ(message(r),
+            "component.residual_limit_rad = 1e-05 is below 2 pickoff LSBs (0.00012207): a healthy gyro would latch "
+            "a fault");
+  // The noise the board promises, 9 sigma.
+  c.pickoff_lsb_rad = 0;
+  c.pickoff_noise_rad = 5e-5;
+  c.residual_limit_rad = 2e-4;
+  const ConfigCheck n = check(c);
+  ASSERT_STREQ(n.field, "residual_limit_rad");
+  EXPECT_NEAR(n.bound, 4.5e-4, 1e-18);
+}
+
+TEST(ComponentConfig, GivenTheHardwarePickoffWHENResidualBelowItTHENRefused) {
+  SimulatedGyroConfig<double> g = Seeker::stub();
+  g.pickoff.lsb_rad = 6.103515625e-05;
+  GyroComponentConfig<double> c = Seeker::component();
+  c.residual_limit_rad = 1e-5;  // the component states no LSB: the hardware's is known here
+  ConfigCheckList<8> pair;
+  check_against_hardware(g, c, pair);
+  ASSERT_FALSE(pair.empty());
+  EXPECT_STREQ(pair[0].field, "residual_limit_rad");
+  EXPECT_EQ(message(pair[0]),
+            "component.residual_limit_rad = 1e-05 is below 2 pickoff LSBs (0.00012207): a healthy gyro would latch "
+            "a fault");
+}
+
+TEST(ComponentConfig, GivenAPickoffStepBeyondTheRangeTHENRefused) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.max_pickoff_step_rad = 1.0;  // range 0.6
+  const ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "max_pickoff_step_rad");
+  EXPECT_EQ(r.bound, 0.6);
+  EXPECT_EQ(r.relation, Relation::kAbove);
+  EXPECT_EQ(message(r),
+            "component.max_pickoff_step_rad = 1 is above pickoff_range_rad (0.6): a step larger than the range "
+            "believes any reading");
+}
+
+TEST(ComponentConfig, GivenAPickoffRangeOf5RadTHENRefusedOnBothSides) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.pickoff_range_rad = 5.0;
+  const ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "pickoff_range_rad");
+  EXPECT_NEAR(r.bound, 1.5707963267948966, 0);
+  SimulatedGyroConfig<double> g = Seeker::stub();
+  g.pickoff.range_rad = 5.0;
+  const ConfigCheck s = check(g);
+  ASSERT_STREQ(s.field, "pickoff.range_rad");
+  EXPECT_EQ(s.relation, Relation::kAbove);
+}
+
+TEST(ComponentConfig, GivenATorqueLimit100TimesTheTorquersTHENRefused) {
+  SimulatedGyroConfig<double> g = Seeker::stub();
+  g.torquer.max_torque = 0.1;
+  GyroComponentConfig<double> c = Seeker::component();
+  ConfigCheckList<8> ok_pair;
+  check_against_hardware(g, c, ok_pair);
+  EXPECT_TRUE(ok_pair.empty());
+  c.max_torque = 10.0;  // 100 times what the electronics drive
+  ConfigCheckList<8> pair;
+  check_against_hardware(g, c, pair);
+  const ConfigCheck* r = pair.find("max_torque");
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->bound, 0.1);
+  EXPECT_EQ(r->relation, Relation::kAbove);
+  // On its own the component refuses it too: a full-torque step's nutation.
+  const ConfigCheck own = check(c);
+  ASSERT_STREQ(own.field, "max_torque");
+  EXPECT_NEAR(own.bound, 0.1 * 0.01 * std::pow(2 * kPi<double> * 400 * 3e-5, 2) / 2e-5, 1e-12);
+}
+
+TEST(ComponentConfig, GivenAZeroCageGainTHENRefusedForTheStopProtection) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.cage_gain_1_s = 0;
+  EXPECT_STREQ(check(c).field, "cage_gain_1_s");
+  c.cage_gain_1_s = 2001;  // gain * tick > 1 at 2 kHz
+  const ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "cage_gain_1_s");
+  EXPECT_EQ(r.bound, 2000);
+}
+
+TEST(ComponentConfig, GivenSeveralBadFieldsWHENCheckAllTHENEveryRuleIsListed) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.max_pickoff_step_rad = 1.0;           // above the range
+  c.gimbal_stop_margin_rad = 1e-6;        // less than a tick at the rate limit
+  c.max_body_rate_rad_s = 0.5;            // below the rate limits
+  c.uncage_settle_ticks = 4294967295u;    // beyond the longest time
+  c.residual_persistence_ticks = 100000;  // beyond the longest time
+  const ConfigCheckList<32> all = all_of(c);
+  EXPECT_EQ(all.total(), 5u);
+  for (const char* f : {"max_pickoff_step_rad", "gimbal_stop_margin_rad", "max_body_rate_rad_s", "uncage_settle_ticks",
+                        "residual_persistence_ticks"}) {
+    EXPECT_NE(all.find(f), nullptr) << f;
+  }
+  // check() keeps returning the first of them.
+  EXPECT_STREQ(check(c).field, all[0].field);
+}
+
+TEST(ComponentConfig, GivenOwnRangesBrokenWHENCheckAllTHENEachFieldNamedOnce) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.tick_s = 1.0;  // beyond 0.1 s
+  c.estimator_gain = 1.5;
+  c.friction = std::numeric_limits<double>::quiet_NaN();
+  const ConfigCheckList<32> all = all_of(c);
+  ASSERT_EQ(all.total(), 3u);
+  EXPECT_EQ(all.find("friction")->status, Status::kNonFiniteInput);
+  EXPECT_EQ(all.find("friction")->relation, Relation::kNotFinite);
+  EXPECT_EQ(all.find("tick_s")->bound, 0.1);
+  EXPECT_EQ(all.find("estimator_gain")->bound, 1.0);
+}
+
+TEST(ComponentConfig, GivenAConeBeyondTheStopTHENRefusedAgainstTheHardware) {
+  GyroComponentConfig<double> c = Seeker::component();
+  SimulatedGyroConfig<double> g = Seeker::stub();
+  g.gimbal.stop_cone_rad = 0.45;  // inside the component's 0.5 rad cone
+  ConfigCheckList<8> pair;
+  check_against_hardware(g, c, pair);
+  const ConfigCheck* r = pair.find("gimbal_cone_limit_rad");
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->bound, 0.45);
+}
+
+TEST(ComponentConfig, GivenASmallBufferWHENFormattedTHENTruncatedAndTerminated) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.estimator_gain = 1.5;
+  char buf[16];
+  const int n = format_refusal(check(c), nullptr, buf, sizeof buf);
+  EXPECT_GT(n, 15);
+  EXPECT_EQ(std::string(buf), "estimator_gain ");
+}
+
+}  // namespace
+}  // namespace gyro

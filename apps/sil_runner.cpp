@@ -1,18 +1,21 @@
 #include "sil_runner.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <type_traits>
+#include <string>
 #include <vector>
 
 #include "body_motion.hpp"
 #include "flight_computer.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/sil_loop.hpp"
+#include "gyro/sil_contract.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "pil_flight.hpp"
 #include "scenario_limits.hpp"
@@ -122,30 +125,62 @@ Config<T> cast_config(const Config<double>& d) {
   return out;
 }
 
-std::string refusal(const Scenario& s, const std::string& path, const char* who, Status st) {
-  std::string r = to_string(st);
-  if (st == Status::kNumericalOverflow) r += ": the rotor's exact step over one tick overflows";
+// The refusal's rule as format_refusal words it ("residual_limit_rad = 1e-05 is below ...").
+std::string rule_text(const ConfigCheck& c) {
+  std::array<char, 512> buf{};
+  (void)format_refusal(c, nullptr, buf.data(), buf.size());
+  return std::string(buf.data());
+}
+
+std::string refusal(const Scenario& s, const std::string& path, const char* who, const ConfigCheck& c) {
+  std::string r = to_string(c.status);
+  if (c.status == Status::kNumericalOverflow) r += ": the rotor's exact step over one tick overflows";
   const auto v = s.values.find(path);
   if (v != s.values.end()) r += " (value " + v->second + ")";
   r += "; refused by ";
   r += who;
   r += "::configure";
   if (s.run.precision == Precision::kFloat) r += " in float";
+  if (c.relation != Relation::kNone || c.rule != nullptr) r += ": " + rule_text(c);
   return r;
 }
 
-// Configures both sides; a refusal names the scenario's JSON field.
+// Every further rule of `all` after the first, as "; also component.x = ... : why".
+template <std::size_t N>
+std::string also(const Scenario& s, const ConfigCheckList<N>& all) {
+  std::string r;
+  for (std::size_t i = 1; i < all.size(); ++i) {
+    r += "; also " + component_field_path(s, all[i].field ? all[i].field : "(unnamed)") + ": " + rule_text(all[i]);
+  }
+  if (all.total() > all.size()) r += "; and " + std::to_string(all.total() - all.size()) + " more";
+  return r;
+}
+
+// Configures both sides; a refusal names the scenario's JSON field, its value, the bound and
+// the rule, and lists every other rule the component's configuration breaks.
 template <typename T>
 void configure_both(const Scenario& s, SimulatedGyro<T>& stub, FlightComputer<T>& comp) {
-  const ConfigCheck g = stub.configure(cast_config<T>(s.gyro));
+  const SimulatedGyroConfig<T> gyro = cast_config<T>(s.gyro);
+  const ConfigCheck g = stub.configure(gyro);
   if (!g.ok()) {
     const std::string path = gyro_field_path(s, g.field ? g.field : "(unnamed)");
-    throw ScenarioError(s.file, path, refusal(s, path, "SimulatedGyro", g.status));
+    throw ScenarioError(s.file, path, refusal(s, path, "SimulatedGyro", g));
   }
-  const ConfigCheck c = comp.configure(cast_config<T>(s.component));
+  const GyroComponentConfig<T> component = cast_config<T>(s.component);
+  const ConfigCheck c = comp.configure(component);
   if (!c.ok()) {
+    ConfigCheckList<32> all;
+    check_all(component, all);
     const std::string path = component_field_path(s, c.field ? c.field : "(unnamed)");
-    throw ScenarioError(s.file, path, refusal(s, path, "GyroComponent", c.status));
+    throw ScenarioError(s.file, path, refusal(s, path, "GyroComponent", c) + also(s, all));
+  }
+  ConfigCheckList<32> pair;
+  check_against_hardware(gyro, component, pair);
+  if (!pair.empty()) {
+    const std::string path = component_field_path(s, pair[0].field);
+    throw ScenarioError(s.file, path,
+                        to_string(pair[0].status) + std::string(" against the gyro's hardware: ") + rule_text(pair[0]) +
+                            also(s, pair));
   }
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "config_doc.hpp"
 #include "gyro/component_config.hpp"
 #include "gyro/seeker_example.hpp"
 #include "gyro/simulated_gyro.hpp"
@@ -194,6 +195,17 @@ void expect_documented(const std::string& heading, const Config& c) {
   for (const auto& [k, row] : documented) {
     (void)row;
     if (!fields.count(k) && k.rfind(prefix, 0) == 0) ADD_FAILURE() << k << " is documented but no field";
+  }
+}
+
+// The docs' generated tables hold what gyro_config_doc would write from the field tables.
+TEST(ConfigFields, GivenTheGeneratedDocTablesWHENRegeneratedTHENUnchanged) {
+  for (const doc::Generated& g : doc::generated_tables()) {
+    const std::string page = doc::read_file(std::string(GYRO_SOURCE_DIR) + "/docs/" + g.file);
+    std::string regenerated = page;
+    ASSERT_TRUE(doc::replace_between(regenerated, g.name, g.text)) << g.file << ": " << g.name;
+    EXPECT_EQ(page, regenerated) << "docs/" << g.file << " (" << g.name << ") differs from the field tables: run "
+                                 << "gyro_config_doc docs";
   }
 }
 

@@ -182,7 +182,7 @@ def torque(seq, t1, t2, double):
 
 def harness_frames(double):
     config = reals([1e-3, 2e-5, 2e-5, 3e-5, 4e-4, 400, 200, 1, 1, 0.04, 20, 0.35, 0.03, 0.01, 0.5, 5e-3,
-                    0.02, 1.7e-3, 100], double) + bytes([3]) + struct.pack("<8I", 20, 10, 50, 50, 50, 8, 50, 25000)
+                    0.02, 1.7e-3, 100, 0, 0], double) + bytes([3]) + struct.pack("<8I", 20, 10, 50, 50, 50, 8, 50, 25000)
     tick_in = struct.pack("<IBB", 7, 24, 0x6) + reals([0.3, -0.2, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.05, -0.03], double)
     tick_out = struct.pack("<IBIBIB4IB", 8, 1, 7, 0, 141, 15, 8, 8, 0, 0, 0) + struct.pack("<14I", *range(14))
     telemetry = struct.pack("<IBI", 7, 3, 4) + struct.pack("<21I", *range(21)) + reals(

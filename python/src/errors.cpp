@@ -24,8 +24,13 @@ void raise_config_error(const std::string& field, const std::string& reason, Sta
 void raise_if_refused(const ConfigCheck& c, const char* who) {
   if (c.ok()) return;
   const std::string field = c.field != nullptr ? c.field : "(unnamed)";
-  raise_python("ConfigError",
-               py::make_tuple(std::string(who) + ": " + field + ": " + to_string(c.status), field, c.status));
+  std::string reason = to_string(c.status);
+  if (c.relation != Relation::kNone || c.rule != nullptr) {
+    char buf[512];
+    (void)format_refusal(c, nullptr, buf, sizeof buf);
+    reason += std::string(" (") + buf + ")";  // the value, the bound and the rule
+  }
+  raise_python("ConfigError", py::make_tuple(std::string(who) + ": " + field + ": " + reason, field, c.status));
 }
 
 void raise_if_failed(Status s, const std::string& what, bool ignored_ok) {

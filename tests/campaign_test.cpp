@@ -574,11 +574,14 @@ TEST(CampaignRun, GivenTheEnvelopeAndPersistenceMetricsThenTheyAreWhatTheTimeHis
   j["criteria"] = json::array();
   j["runs"] = 1;
   j["metrics"] = {{"healthy_residual", true}, {"residual_persistence", true}, {"envelope", true}, {"safe_mode", true}};
+  // (The rate limits cut to 0.29 rad/s, just under the 0.3 flown: the contract holds the
+  // residual limit above a tick at the rate limit, and 1.2 times the healthy residual is 2.97e-4.)
+  j["set"] = {{"component.max_pitch_rate_rad_s", 0.29}, {"component.max_yaw_rate_rad_s", 0.29}};
   std::string csv;
   const RunResult first = run_with_history(j, csv);
   ASSERT_EQ(first.status, RunStatus::kOk) << first.reason;
   const double limit = 1.2 * *first.metrics->max_residual_healthy_rad;
-  j["set"] = {{"component.residual_limit_rad", limit}};
+  j["set"]["component.residual_limit_rad"] = limit;
 
   // WHEN it runs with its time history
   const RunResult r = run_with_history(j, csv);
@@ -636,7 +639,8 @@ TEST(CampaignRun, GivenADispersedValueTheComponentRefusesThenTheRunIsReportedRef
   const Campaign c = parse(j);
   const RunResult r = execute_run(c, 0);
   EXPECT_EQ(r.status, RunStatus::kRefused);
-  EXPECT_EQ(r.reason, "component.estimator_gain: input out of range (value 1.5); refused by GyroComponent::configure");
+  EXPECT_EQ(r.reason, "component.estimator_gain: input out of range (value 1.5); refused by GyroComponent::configure: "
+            "estimator_gain = 1.5 is above its upper bound (1): a fraction of the residual per tick");
   const std::string row = format_row(c, r);
   const std::vector<std::string> cells = *split_csv_line(row.substr(0, row.size() - 1));
   const std::vector<std::string> header = table_header(c);

@@ -347,6 +347,13 @@ TEST(ComponentNavigation, GivenABodyRateExactlyAtItsLimitThenUsedAndJustBeyondIt
   EXPECT_TRUE(b.raised(kNavInvalid));
 }
 
+// The nutation of stopping twice the larger rate limit (the margin's bound, as check() takes it).
+double stop_nutation(const GyroComponentConfig<double>& c) {
+  const double h = 2.0 * 3.14159265358979323846 * c.nominal_spin_hz * c.spin_inertia;
+  const double rate = std::max(c.max_pitch_rate_rad_s, c.max_yaw_rate_rad_s);
+  return 2.0 * rate / (std::sqrt(h * h + c.friction * c.friction) / std::sqrt(c.pitch_inertia * c.yaw_inertia));
+}
+
 TEST(ComponentConfig, GivenEachLimitExactlyAtItsEdgeThenTheInclusiveOnesAreAcceptedAndTheStrictOnesRefused) {
   using C = GyroComponentConfig<double>;
   struct Case {
@@ -362,7 +369,8 @@ TEST(ComponentConfig, GivenEachLimitExactlyAtItsEdgeThenTheInclusiveOnesAreAccep
       {"min_spin_hz", [](C& c) { c.min_spin_hz = c.nominal_spin_hz; }, false},
       {"min_spin_hz", [](C& c) { c.min_spin_hz = 0.0; }, true},
       {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = 0.0; }, false},  // < a tick at the rate limit
-      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = c.max_pitch_rate_rad_s * c.tick_s; }, true},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = std::nextafter(stop_nutation(c), 0.0); }, false},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = stop_nutation(c); }, true},
   };
   for (const Case& k : cases) {
     C c = kSeeker;

@@ -182,12 +182,13 @@ TEST(ComponentConfig, GivenAZeroCageGainTHENRefusedForTheStopProtection) {
 TEST(ComponentConfig, GivenSeveralBadFieldsWHENCheckAllTHENEveryRuleIsListed) {
   GyroComponentConfig<double> c = Seeker::component();
   c.max_pickoff_step_rad = 1.0;           // above the range
-  c.gimbal_stop_margin_rad = 1e-6;        // less than a tick at the rate limit
+  c.gimbal_stop_margin_rad = 1e-6;        // less than a tick at the rate limit, and than the
+                                          // nutation of stopping twice it: two rules
   c.max_body_rate_rad_s = 0.5;            // below the rate limits
   c.uncage_settle_ticks = 4294967295u;    // beyond the longest time
   c.residual_persistence_ticks = 100000;  // beyond the longest time
   const ConfigCheckList<32> all = all_of(c);
-  EXPECT_EQ(all.total(), 5u);
+  EXPECT_EQ(all.total(), 6u);
   for (const char* f : {"max_pickoff_step_rad", "gimbal_stop_margin_rad", "max_body_rate_rad_s", "uncage_settle_ticks",
                         "residual_persistence_ticks"}) {
     EXPECT_NE(all.find(f), nullptr) << f;

@@ -223,15 +223,7 @@ std::uint64_t wanted() {
   return env != nullptr ? std::strtoull(env, nullptr, 10) : 100u;
 }
 
-// The flights need the component's active stop protection (issue 25, item 1), which adds flag
-// bits to the 19 of ComponentFlag: without it the body's own turn carries a free or uncaging
-// gyro onto its stop (about 4 % of the draws), which is that item's finding, not this one's.
-constexpr bool kHasActiveStopProtection = kComponentFlagCount > 19;
-
 TEST(ConfigContractProperty, GivenAcceptedConfigsWHENFlownTHENNoLockOutFaultOrStop) {
-  if (!kHasActiveStopProtection && std::getenv("GYRO_CONTRACT_CONFIGS") == nullptr) {
-    GTEST_SKIP() << "needs the component's active stop protection (set GYRO_CONTRACT_CONFIGS to run anyway)";
-  }
   const std::uint64_t n = wanted();
   std::uint64_t accepted = 0, drawn = 0, failed = 0, ticks = 0;
   const auto t0 = std::chrono::steady_clock::now();

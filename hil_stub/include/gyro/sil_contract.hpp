@@ -28,6 +28,13 @@ void check_against_hardware(const SimulatedGyroConfig<T>& g, const GyroComponent
     sink(refuse_below("residual_limit_rad", residual, kResidualNoiseSigmas * noise, "9 sigma of pickoff noise",
                       "a healthy gyro would latch a fault"));
   }
+  const double slowest = std::min(static_cast<double>(c.max_pitch_rate_rad_s), static_cast<double>(c.max_yaw_rate_rad_s));
+  const double jitter = kResidualLsbs * lsb + kJitterNoiseSigmas * noise;
+  if (jitter > 0.0 && static_cast<double>(c.cage_gain_1_s) > kJitterRateShare * slowest / jitter) {
+    sink(refuse_above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), kJitterRateShare * slowest / jitter,
+                      "the smaller rate limit / 4 / (2 LSBs + 3 sigma)",
+                      "the pickoffs' rounding and noise alone would drive the caging loop and stop protection onto the rate limit"));
+  }
   const double step = static_cast<double>(c.max_pickoff_step_rad);
   if (step < kResidualLsbs * lsb + kResidualNoiseSigmas * noise) {
     sink(refuse_below("max_pickoff_step_rad", step, kResidualLsbs * lsb + kResidualNoiseSigmas * noise,

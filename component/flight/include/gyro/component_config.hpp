@@ -30,6 +30,10 @@ inline constexpr double kResidualLsbs = 2.0;        // a residual limit above 2 
 // and 9 sigma of the pickoff noise: 6 sigma of the difference of two readings (sigma sqrt 2),
 // about 1e-9 a reading beyond it.
 inline constexpr double kResidualNoiseSigmas = 9.0;
+// The pickoff jitter a loop gain multiplies (2 LSBs + 3 sigma), and the share of the rate
+// limit it may ask.
+inline constexpr double kJitterNoiseSigmas = 3.0;
+inline constexpr double kJitterRateShare = 0.25;
 inline constexpr double kStepRateTicks = 2.0;       // a reading may move 2 ticks at the rate limit
 inline constexpr double kAuthorityFraction = 0.5;   // the torquer precesses at >= half the rate limit
 inline constexpr double kNutationShare = 0.1;       // a full-torque nutation within 1/10 of the small-angle limit
@@ -86,11 +90,28 @@ void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
   // Caging loop and stop protection.
   above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), 1.0 / tick, "1 / tick_s",
         "gain x tick > 1: the discrete caging loop overshoots");
+  // The caging loop and the stop protection command gain x angle: the pickoffs' rounding and
+  // noise alone must not ask a quarter of the smaller rate limit, or the loop chatters on it.
+  const double slowest = std::min(static_cast<double>(c.max_pitch_rate_rad_s), static_cast<double>(c.max_yaw_rate_rad_s));
+  const double jitter = kResidualLsbs * lsb + kJitterNoiseSigmas * noise;
+  if (jitter > 0.0) {
+    above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), kJitterRateShare * slowest / jitter,
+          "the smaller rate limit / 4 / (2 LSBs + 3 sigma)",
+          "the pickoffs' rounding and noise alone would drive the caging loop and stop protection onto the rate limit");
+  }
   // Cone, margin, pickoff range.
   above("gimbal_cone_limit_rad", cone, range, "pickoff_range_rad",
         "the pickoffs would saturate inside the cone: the gimbal could pass it unseen");
   below("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), rate * tick,
         "one tick at the rate limit", "the gimbal could cross the protection zone within a tick");
+  // Stopping the fastest outward motion flown (a slew at the rate limit with the body turning
+  // as fast the other way) sets the rotor nutating by that rate over the nutation rate
+  // sqrt(H^2 + f^2) / sqrt(J1 J2): the protection zone must hold that overshoot.
+  const double friction = static_cast<double>(c.friction);
+  const double nutation_rate = std::sqrt(h * h + friction * friction) / std::sqrt(j1 * j2);
+  below("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), 2.0 * rate / nutation_rate,
+        "2 x the larger rate limit / the nutation rate",
+        "stopping the fastest outward motion would nutate the gimbal through the protection zone");
   if (!(c.gimbal_stop_margin_rad < c.gimbal_cone_limit_rad)) {
     sink(refuse_above("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), cone,
                       "gimbal_cone_limit_rad", "no cone left to fly in"));

@@ -163,13 +163,13 @@ struct FieldTable<GyroComponentConfig<T>> {
       c.max_torque...);
     v(Field{"friction_compensation", Rule::kNone, kRange, kOpt}, c.friction_compensation...);
     v(Field{"cage_gain_1_s", kPos, kRange, kReq, kNo, 0.1, 1e5, "1/s",
-            "caging pulls in within 10 s; gain x tick <= 1 (a monotone discrete loop); stop protection's gain"},
+            "caging pulls in within 10 s; gain x tick <= 1 (a monotone discrete loop); gain x pickoff jitter within a quarter of the rate limit; stop protection's gain"},
       c.cage_gain_1_s...);
     v(Field{"gimbal_cone_limit_rad", kPos, kRange, kReq, kNo, 1e-3, 1.5707963267948966, "rad",
             "within the pickoff range; the readout's pitch is within +-pi/2"},
       c.gimbal_cone_limit_rad...);
     v(Field{"gimbal_stop_margin_rad", kNonNeg, kRange, kReq, kNo, 0.0, 1.5707963267948966, "rad",
-            "at least one tick at the rate limit; below the cone limit"},
+            "at least one tick at the rate limit and the nutation of stopping twice it; below the cone limit"},
       c.gimbal_stop_margin_rad...);
     v(Field{"small_angle_limit_rad", kPos, kRange, kOpt, kNo, 1e-4, 0.1, "rad",
             "the report's 0.01: beyond 0.1 rad the small-angle step keeps fewer than 3 digits"},

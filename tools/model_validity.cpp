@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "text_file.hpp"
 #include "validity_envelope.hpp"
 
 namespace {
@@ -260,21 +261,10 @@ int main(int argc, char** argv) {
   }
 
   std::fputs(md.c_str(), stdout);
-  if (!markdown.empty()) {
-    std::FILE* f = std::fopen(markdown.c_str(), "w");
-    if (f == nullptr) {
-      std::fprintf(stderr, "cannot write %s\n", markdown.c_str());
-      return 1;
-    }
-    std::fputs(md.c_str(), f);
-    std::fclose(f);
-  }
+  if (!markdown.empty() && !gyro::tools::write_text_file(markdown, md)) return 1;
   if (!data.empty()) {
-    std::FILE* f = std::fopen(data.c_str(), "w");
-    if (f == nullptr) {
-      std::fprintf(stderr, "cannot write %s\n", data.c_str());
-      return 1;
-    }
+    std::FILE* f = gyro::tools::open_for_writing(data);
+    if (f == nullptr) return 1;
     std::fputs("# cone_deg turn_rad_s roll_rad_s report_err corrected_err residual residual_window slew_rel fault\n", f);
     for (const Row& r : rows) {
       std::fprintf(f, "%g %g %g %.6e %.6e %.6e %.6e %.6e %d\n", r.cone_deg, r.turn, r.roll, r.open.report_error_rad,

@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "text_file.hpp"
 #include "stop_envelope.hpp"
 
 namespace {
@@ -455,21 +456,10 @@ int main(int argc, char** argv) {
         fmt(", measured in %.0f s of run time.\n", seconds);
 
   std::fputs(md.c_str(), stdout);
-  if (!markdown.empty()) {
-    std::FILE* f = std::fopen(markdown.c_str(), "w");
-    if (f == nullptr) {
-      std::fprintf(stderr, "cannot write %s\n", markdown.c_str());
-      return 1;
-    }
-    std::fputs(md.c_str(), f);
-    std::fclose(f);
-  }
+  if (!markdown.empty() && !gyro::tools::write_text_file(markdown, md)) return 1;
   if (!csv.empty()) {
-    std::FILE* f = std::fopen(csv.c_str(), "w");
-    if (f == nullptr) {
-      std::fprintf(stderr, "cannot write %s\n", csv.c_str());
-      return 1;
-    }
+    std::FILE* f = gyro::tools::open_for_writing(csv);
+    if (f == nullptr) return 1;
     std::fputs("gyro,mode,turn_rad_s,direction,roll_rad_s,cone_deg,start_cone_rad,demand,within_authority,contact,"
                "contact_ticks,first_contact_s,max_cone_rad,closest_rad,first_cone_past_cp_s,first_stop_protect_s,"
                "first_beyond_authority_s,first_gimbal_limit_s,first_fault_s,final_mode,reached_mode,demand_turn_plus_u,"

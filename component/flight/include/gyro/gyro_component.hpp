@@ -279,7 +279,7 @@ class GyroComponent {
   [[nodiscard]] std::uint32_t update_mode(ModeRequest request, bool measurable, bool fault_now) noexcept {
     if (fault_now) {
       mode_ = GyroMode::kFault;
-      return request == ModeRequest::kNone ? 0u : kRequestRefused;
+      return request == ModeRequest::kNone ? 0u : static_cast<std::uint32_t>(kRequestRefused);
     }
     switch (mode_) {
       case GyroMode::kCaged:

@@ -19,6 +19,7 @@
 #include "gyro/seeker_component_example.hpp"
 #include "gyro/board/register_board_port.hpp"
 #include "gyro/status.hpp"
+#include "gyro/stop_protection.hpp"
 
 namespace gyro {
 template struct RotorTransition<float>;
@@ -164,6 +165,7 @@ template SampleRunSummary run_report_sample<double, flight_rules_check::IgnoreSt
 #include "gyro/gimbal_plant_config.hpp"
 #include "gyro/gimbal_stop.hpp"
 #include "gyro/seeker_gimbal.hpp"
+#include "gyro/sil_contract.hpp"
 
 namespace gyro {
 template class GimbalPlant<float>;

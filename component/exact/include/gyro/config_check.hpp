@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string_view>
 #include <cstdint>
 #include <cstdio>
 
@@ -67,13 +68,10 @@ class ConfigCheckList {
   // The refusal that names `field`, or nullptr.
   [[nodiscard]] const ConfigCheck* find(const char* field) const noexcept {
     for (std::size_t i = 0; i < size_; ++i) {
-      const char* a = items_[i].field;
-      const char* b = field;
-      while (a != nullptr && *a != '\0' && *a == *b) {
-        ++a;
-        ++b;
+      if (items_[i].field != nullptr && field != nullptr &&
+          std::string_view(items_[i].field) == std::string_view(field)) {
+        return &items_[i];
       }
-      if (a != nullptr && *a == *b) return &items_[i];
     }
     return nullptr;
   }

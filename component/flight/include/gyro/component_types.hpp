@@ -140,7 +140,7 @@ struct FieldTable<GyroComponentConfig<T>> {
     constexpr const char* kNo = nullptr;
     constexpr double kCountMax = 4294967295.0;  // the counters' range; the longest time bounds them (check_all)
     constexpr const char* kUnits = "consistent units: products with rates and spins stay within float's range";
-    constexpr const char* kTime = "with the tick, at most the longest configured time (10 s)";
+    constexpr const char* kTime = "with the tick, at most the longest configured span, 10 s";
     v(Field{"tick_s", kPos, Status::kNonPositiveStep, Presence::kImplied, kNo, 1e-5, 0.1, "s",
             "a rate group of 10 Hz to 100 kHz"}, c.tick_s...);
     v(Field{"pitch_inertia", kPos, kInertia, kReq, kNo, 1e-12, 1e12, "inertia", kUnits}, c.pitch_inertia...);

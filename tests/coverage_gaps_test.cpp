@@ -464,17 +464,19 @@ TEST(GyroModelCorrection, GivenEachBadCorrectionInputThenRefusedWithItsStatusAnd
   EXPECT_NEAR(g.gimbal_yaw_rad() - yaw0, 0.0, 2e-5);
 }
 
-// Error sources whose drift torque (H times the drift) is not representable: the step is
-// refused and the model keeps its state, rather than carrying an infinite torque into it.
+// A drift torque (H times the drift) that is not representable: the step is refused and the
+// model keeps its state, rather than carrying an infinite torque into it. configure() bounds
+// the drifts; the g-sensitive one still grows with the step's acceleration.
 TEST(GyroModelErrorSources, GivenADriftTorqueBeyondTheLargestDoubleWhenSteppedThenRefusedAndStateBitIdentical) {
   GyroModelConfig<double> c = ReportSample<double>::config();
-  c.errors.pitch.static_drift_rad_s = 1e306;  // finite: accepted by configure
+  c.errors.pitch.g_sensitive_drift_rad_s = 1.0;  // its bound: accepted by configure
   GyroModel<double> g;
   ASSERT_TRUE(g.configure(c).ok());
   ASSERT_EQ(g.uncage(Matrix3<double>::Identity(), Vector2<double>(0.1, -0.2)), Status::kOk);
   GyroStepInput<double> in;
   in.dt_s = 1e-3;
   in.spin_hz = ReportSample<double>::kSpinHz;  // H = 1885: H * 1e306 overflows
+  in.body_accel = Vector2<double>(1e306 * c.gravity, 0.0);  // a drift of 1e306 rad/s
   const Quaternion<double> q0 = g.attitude_gyro_to_earth();
   const Vector2<double> rate0 = g.rate_rad_s();
   const Status st = g.step_torque(in, Vector2<double>::Zero());

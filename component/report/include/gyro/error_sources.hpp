@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <string_view>
 
 #include "gyro/config_fields.hpp"
 #include "gyro/rotor_parameters.hpp"
@@ -30,19 +32,31 @@ struct GyroErrorSources {
   AxisErrorSources<T> yaw{};    // drifts of psi'   (the report's GERROR(:,1))
 };
 
-// The fields (gyro/config_fields.hpp): any finite value, each optional (0: none).
+// The fields (gyro/config_fields.hpp), each optional (0: none). A drift of 1 rad/s (57 deg/s)
+// is far beyond any gyro that still holds a reference (real ones drift degrees per hour).
 template <typename T>
 struct FieldTable<AxisErrorSources<T>> {
   static constexpr bool kDefined = true;
   template <class Visit, class... C>
   static constexpr void visit(Visit&& v, C&... c) {
+    constexpr Rule kAny = Rule::kFinite;
+    constexpr Status kRange = Status::kOutOfRange;
     constexpr Presence kOpt = Presence::kOptional;
-    v(Field{"static_drift_rad_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.static_drift_rad_s...);
-    v(Field{"in_plane_erection_1_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.in_plane_erection_1_s...);
-    v(Field{"cross_plane_erection_1_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.cross_plane_erection_1_s...);
-    v(Field{"g_sensitive_drift_rad_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.g_sensitive_drift_rad_s...);
-    v(Field{"torquer_cross_coupling", Rule::kFinite, Status::kOutOfRange, kOpt}, c.torquer_cross_coupling...);
-    v(Field{"coulomb_friction_rad_s", Rule::kFinite, Status::kOutOfRange, kOpt}, c.coulomb_friction_rad_s...);
+    v(Field{"static_drift_rad_s", kAny, kRange, kOpt, nullptr, -1.0, 1.0, "rad/s",
+            "within 57 deg/s either way: beyond, the gyro holds no reference"}, c.static_drift_rad_s...);
+    v(Field{"in_plane_erection_1_s", kAny, kRange, kOpt, nullptr, -10.0, 10.0, "1/s",
+            "an erection time constant of 0.1 s or longer (negative: diverging); its drift at pi rad within 32 rad/s"},
+      c.in_plane_erection_1_s...);
+    v(Field{"cross_plane_erection_1_s", kAny, kRange, kOpt, nullptr, -10.0, 10.0, "1/s",
+            "as the in-plane erection, from the other axis' angle"}, c.cross_plane_erection_1_s...);
+    v(Field{"g_sensitive_drift_rad_s", kAny, kRange, kOpt, nullptr, -1.0, 1.0, "rad/s",
+            "per g beyond 1 g, within the static drift's range"}, c.g_sensitive_drift_rad_s...);
+    v(Field{"torquer_cross_coupling", kAny, kRange, kOpt, nullptr, -1.0, 1.0, "",
+            "a fraction of the other axis' command: a larger leak than the axis' own is no torquer axis"},
+      c.torquer_cross_coupling...);
+    v(Field{"coulomb_friction_rad_s", Rule::kNonNegative, kRange, kOpt, nullptr, 0.0, 1.0, "rad/s",
+            "a magnitude (it clamps the precession it opposes), within the static drift's range"},
+      c.coulomb_friction_rad_s...);
   }
 };
 
@@ -55,6 +69,34 @@ struct FieldTable<GyroErrorSources<T>> {
     v(Field{"yaw", Rule::kFinite, Status::kOutOfRange, Presence::kOptional}, c.yaw...);
   }
 };
+
+// The error sources' names in refusals, per axis in table order (a scenario's keys below gyro).
+inline constexpr const char* kErrorSourceFieldNames[2][6] = {
+    {"errors.pitch.static_drift_rad_s", "errors.pitch.in_plane_erection_1_s", "errors.pitch.cross_plane_erection_1_s",
+     "errors.pitch.g_sensitive_drift_rad_s", "errors.pitch.torquer_cross_coupling",
+     "errors.pitch.coulomb_friction_rad_s"},
+    {"errors.yaw.static_drift_rad_s", "errors.yaw.in_plane_erection_1_s", "errors.yaw.cross_plane_erection_1_s",
+     "errors.yaw.g_sensitive_drift_rad_s", "errors.yaw.torquer_cross_coupling", "errors.yaw.coulomb_friction_rad_s"},
+};
+
+// The first error source outside its own range, named with its axis.
+template <typename T>
+[[nodiscard]] ConfigCheck check(const GyroErrorSources<T>& e) noexcept {
+  const AxisErrorSources<T>* axes[] = {&e.pitch, &e.yaw};
+  for (std::size_t a = 0; a < 2; ++a) {
+    ConfigCheck r = first_refusal<RealFields>(*axes[a]).check;
+    if (r.ok()) continue;
+    std::size_t i = 0;
+    visit_fields(
+        [&](const Field& f, const auto&) noexcept {
+          if (i < 6 && std::string_view(f.name) == r.field) r.field = kErrorSourceFieldNames[a][i];
+          ++i;
+        },
+        *axes[a]);
+    return r;
+  }
+  return {};
+}
 
 namespace detail {
 

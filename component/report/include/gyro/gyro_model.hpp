@@ -77,6 +77,8 @@ template <typename T>
 [[nodiscard]] ConfigCheck check(const GyroModelConfig<T>& c) noexcept {
   const FieldRefusal r = first_refusal<RealFields>(c);
   if (r.status != Status::kOk) return r.check;
+  const ConfigCheck e = check(c.errors);
+  if (!e.ok()) return e;
   if (!(c.gimbal_cone_limit_rad < kPi<T>)) return {Status::kOutOfRange, "gimbal_cone_limit_rad"};
   if (!(c.pitch_gimbal_limit_rad < kPi<T>)) return {Status::kOutOfRange, "pitch_gimbal_limit_rad"};
   if (!(c.yaw_gimbal_limit_rad < kPi<T>)) return {Status::kOutOfRange, "yaw_gimbal_limit_rad"};

@@ -90,27 +90,57 @@ struct FieldTable<GimbalPlantConfig<T>> {
     constexpr Status kRange = Status::kOutOfRange, kInertia = Status::kNonPositiveInertia;
     constexpr Status kFriction = Status::kNegativeFriction;
     constexpr Presence kReq = Presence::kRequired, kOpt = Presence::kOptional, kImplied = Presence::kImplied;
-    v(Field{"spin_inertia", kPos, kInertia, kImplied}, c.spin_inertia...);
-    v(Field{"rotor_transverse_inertia", kPos, kInertia, kReq}, c.rotor_transverse_inertia...);
-    v(Field{"inner_gimbal_inertia", kNonNeg, kInertia, kReq}, c.inner_gimbal_inertia...);
-    v(Field{"outer_gimbal_inertia", kNonNeg, kInertia, kReq}, c.outer_gimbal_inertia...);
-    v(Field{"inner_friction", kNonNeg, kFriction, kOpt}, c.inner_friction...);
-    v(Field{"outer_friction", kNonNeg, kFriction, kOpt}, c.outer_friction...);
-    v(Field{"inner_coulomb_torque", kNonNeg, kFriction, kOpt}, c.inner_coulomb_torque...);
-    v(Field{"outer_coulomb_torque", kNonNeg, kFriction, kOpt}, c.outer_coulomb_torque...);
-    v(Field{"coulomb_rate_scale_rad_s", kPos, kRange, kOpt}, c.coulomb_rate_scale_rad_s...);
-    v(Field{"spin_drive", Rule::kNone, kRange, kOpt}, c.spin_drive...);
-    v(Field{"max_spin_hz", kPos, kRange, kImplied}, c.max_spin_hz...);
-    v(Field{"motor_torque_limit", Rule::kNone, kRange, kOpt}, c.motor_torque_limit...);
-    v(Field{"spin_servo_bandwidth_rad_s", kNonNeg, kRange, kOpt}, c.spin_servo_bandwidth_rad_s...);
-    v(Field{"spin_down_time_s", kNonNeg, kRange, kOpt}, c.spin_down_time_s...);
-    v(Field{"mass_unbalance", Rule::kFinite, kRange, kOpt}, c.mass_unbalance...);
+    constexpr const char* kUnits = "consistent units: products with rates and spins stay within float's range";
+    constexpr const char* kTime = "0 (none) or up to 10 times the longest run (1e8 ticks of at most 1 s)";
+    v(Field{"spin_inertia", kPos, kInertia, kImplied, nullptr, 1e-12, 1e12, "inertia", kUnits}, c.spin_inertia...);
+    v(Field{"rotor_transverse_inertia", kPos, kInertia, kReq, nullptr, 1e-12, 1e12, "inertia",
+            "J0/2 up to a million times J0 (a rigid rotor; check()); consistent units"}, c.rotor_transverse_inertia...);
+    v(Field{"inner_gimbal_inertia", kNonNeg, kInertia, kReq, nullptr, 0.0, 1e12, "inertia",
+            "0 (a massless ring) up to a million times J0, each moment within the sum of the others"},
+      c.inner_gimbal_inertia...);
+    v(Field{"outer_gimbal_inertia", kNonNeg, kInertia, kReq, nullptr, 0.0, 1e12, "inertia",
+            "0 (a massless ring) up to a million times J0, each moment within the sum of the others"},
+      c.outer_gimbal_inertia...);
+    v(Field{"inner_friction", kNonNeg, kFriction, kOpt, nullptr, 0.0, 1e12, "torque/(rad/s)",
+            "a scenario's default is rotor.friction; consistent units"}, c.inner_friction...);
+    v(Field{"outer_friction", kNonNeg, kFriction, kOpt, nullptr, 0.0, 1e12, "torque/(rad/s)",
+            "a scenario's default is rotor.friction; consistent units"}, c.outer_friction...);
+    v(Field{"inner_coulomb_torque", kNonNeg, kFriction, kOpt, nullptr, 0.0, 1e12, "torque",
+            "dry friction's magnitude; consistent units"}, c.inner_coulomb_torque...);
+    v(Field{"outer_coulomb_torque", kNonNeg, kFriction, kOpt, nullptr, 0.0, 1e12, "torque",
+            "dry friction's magnitude; consistent units"}, c.outer_coulomb_torque...);
+    v(Field{"coulomb_rate_scale_rad_s", kPos, kRange, kOpt, nullptr, 1e-6, 1.0, "rad/s",
+            "the tanh's width: below 1 urad/s its slope C/scale would set the sub-steps; above 1 rad/s the dry "
+            "friction is viscous at every gimbal rate"},
+      c.coulomb_rate_scale_rad_s...);
+    v(Field{"spin_drive", Rule::kNone, kRange, kOpt, nullptr, -kNoBound, kNoBound, "",
+            "a motor holds the spin relative to the inner ring, or the rotor runs down free"},
+      c.spin_drive...);
+    v(Field{"max_spin_hz", kPos, kRange, kImplied, nullptr, 1e-3, 1e5, "Hz", "a rotor spins at up to 100 kHz"},
+      c.max_spin_hz...);
+    v(Field{"motor_torque_limit", kNonNeg, kRange, kOpt, nullptr, 0.0, 1e12, "torque",
+            "> 0 and required with spin_drive \"motor\" (check()); unused by a free rotor"},
+      c.motor_torque_limit...);
+    v(Field{"spin_servo_bandwidth_rad_s", kNonNeg, kRange, kOpt, nullptr, 0.0, 1e6, "rad/s",
+            "0 (the spin's acceleration held at zero) to 1e6 rad/s, beyond any motor's loop; it adds to the "
+            "fastest rate the sub-steps resolve"},
+      c.spin_servo_bandwidth_rad_s...);
+    v(Field{"spin_down_time_s", kNonNeg, kRange, kOpt, nullptr, 0.0, 1e9, "s", kTime}, c.spin_down_time_s...);
+    v(Field{"mass_unbalance", Rule::kFinite, kRange, kOpt, nullptr, -1e12, 1e12, "mass x length",
+            "rotor mass times its offset, either way along the spin axis; consistent units"},
+      c.mass_unbalance...);
     v(Field{"stop_cone_rad", kPos, kRange, kImplied, nullptr, 1e-3, 1.3962634015954636, "rad", "1 mrad to 80 deg: gimbal lock out of reach"}, c.stop_cone_rad...);
     v(Field{"stop_restitution", kNonNeg, kRange, kOpt, nullptr, 0.0, 1.0, "", "0 a dead stop to 1 an elastic bounce"}, c.stop_restitution...);
-    v(Field{"torque_axes", Rule::kNone, kRange, kOpt}, c.torque_axes...);
-    v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt}, c.max_body_rate_rad_s...);
-    v(Field{"max_torque", kPos, kRange, kOpt}, c.max_torque...);
-    v(Field{"max_specific_force", kPos, kRange, kOpt}, c.max_specific_force...);
+    v(Field{"torque_axes", Rule::kNone, kRange, kOpt, nullptr, -kNoBound, kNoBound, "",
+            "about the gimbal axes (the device) or the gyro's own (the report's idealisation)"},
+      c.torque_axes...);
+    v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt, nullptr, 1e-4, 1e4, "rad/s",
+            "the component's envelope of body rates, 0.006 deg/s to 1e4 rad/s"},
+      c.max_body_rate_rad_s...);
+    v(Field{"max_torque", kPos, kRange, kOpt, nullptr, 1e-12, 1e12, "torque", kUnits}, c.max_torque...);
+    v(Field{"max_specific_force", kPos, kRange, kOpt, nullptr, 1e-3, 1e7, "accel",
+            "in the units of gyro.gravity: up to 1e6 g in m/s^2 (a gun launch is 2e4 g)"},
+      c.max_specific_force...);
     v(Field{"max_substep_phase_rad", kPos, kRange, kOpt, nullptr, 1e-6, 2.0, "rad", "the sub-step rule (docs/gimbal-plant.md)"}, c.max_substep_phase_rad...);
   }
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gyro/component_config.hpp"
@@ -83,24 +84,37 @@ TYPED_TEST(ExactStepCheck, GivenAStubRotorWhoseStepOverflowsWhenConfiguredThenRe
   }
 }
 
-// What the check accepts, the stub advances: the largest spins either side of the limit.
+// What the check accepts, the stub advances: the largest spins either side of the limit. The
+// spin's own bound (100 kHz) comes first; the exact step's limit, far beyond it, is one of the
+// representation.
 TEST(ExactStepCheck, GivenTheLargestSpinTheStubAcceptsThenItsFirstStepSucceeds) {
   SimulatedGyroConfig<double> c = SeekerExample<double>::stub();
   c.plant = PlantKind::kReport;  // the exact step is the report's plant's
-  double lo = 1e3, hi = 1e300;  // accepted, refused
-  for (int i = 0; i < 200; ++i) {
-    const double mid = std::sqrt(lo) * std::sqrt(hi);
-    c.spin_hz = mid;
-    (check(c).ok() ? lo : hi) = mid;
-  }
+  const auto largest_accepted = [&c](auto accepts) {
+    double lo = 1e3, hi = 1e300;  // accepted, refused
+    for (int i = 0; i < 200; ++i) {
+      const double mid = std::sqrt(lo) * std::sqrt(hi);
+      c.spin_hz = mid;
+      (accepts() ? lo : hi) = mid;
+    }
+    return std::pair<double, double>(lo, hi);
+  };
+  const auto [lo, hi] = largest_accepted([&c] { return check(c).ok(); });
   c.spin_hz = lo;
   SimulatedGyro<double> sim;
   ASSERT_TRUE(sim.configure(c).ok()) << lo;
   ASSERT_EQ(sim.start(Matrix3<double>::Identity(), Vector2<double>::Zero()), Status::kOk);
   EXPECT_EQ(sim.advance(1, Matrix3<double>::Identity(), Vector2<double>::Zero()), Status::kOk) << lo;
+  EXPECT_LE(lo, 1e5);
+  EXPECT_GT(lo, 0.999999e5);
   c.spin_hz = hi;
-  EXPECT_EQ(check(c).status, Status::kNumericalOverflow) << hi;
-  EXPECT_GT(lo, 1e100);  // a real limit of the representation, not a tight physical one
+  EXPECT_EQ(check(c).status, Status::kOutOfRange) << hi;
+  EXPECT_STREQ(check(c).field, "spin_hz");
+
+  const auto [step_lo, step_hi] = largest_accepted([&c] { return check_exact_step_at_start(c).ok(); });
+  c.spin_hz = step_hi;
+  EXPECT_EQ(check_exact_step_at_start(c).status, Status::kNumericalOverflow) << step_hi;
+  EXPECT_GT(step_lo, 1e100);  // a real limit of the representation, not a tight physical one
 }
 
 TEST(ExactStepCheck, GivenTheShippedExampleGyrosThenBothChecksAccept) {

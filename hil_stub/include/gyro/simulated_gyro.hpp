@@ -84,15 +84,21 @@ struct FieldTable<SimulatedGyroConfig<T>> {
     constexpr Presence kReq = Presence::kRequired, kOpt = Presence::kOptional, kImplied = Presence::kImplied;
     v(Field{"plant", Rule::kNone, kRange, kImplied}, c.plant...);
     v(Field{"gyro", Rule::kNone, kRange, kImplied}, c.gyro...);
-    v(Field{"spin_down_time_constant_s", Rule::kNone, kRange, kOpt, "rotor"}, c.spin_down_time_constant_s...);
-    v(Field{"gimbal_stop_rad", Rule::kNone, kRange, kOpt, "limits"}, c.gimbal_stop_rad...);
+    v(Field{"spin_down_time_constant_s", Rule::kNonNegative, kRange, kOpt, "rotor", 0.0, 1e9, "s",
+            "0 (constant spin) or up to 10 times the longest run (1e8 ticks of at most 1 s)"},
+      c.spin_down_time_constant_s...);
+    v(Field{"gimbal_stop_rad", Rule::kNonNegative, kRange, kOpt, "limits", 0.0, 3.141592653589793, "rad",
+            "0 (none) or a cone below pi; the gimbal plant's stop, 1 mrad to 80 deg"},
+      c.gimbal_stop_rad...);
     v(Field{"gimbal", Rule::kNone, kRange, kImplied}, c.gimbal...);
     v(Field{"tick_s", Rule::kPositive, Status::kNonPositiveStep, kImplied, nullptr, 1e-6, 1.0, "s", "the SIL loop's tick"}, c.tick_s...);
     v(Field{"spin_hz", Rule::kPositive, kRange, kReq, "rotor", 1e-3, 1e5, "Hz", "a rotor at power-up spins at up to 100 kHz"}, c.spin_hz...);
     v(Field{"has_spin_readback", Rule::kNone, kRange, kReq, "rotor"}, c.has_spin_readback...);
     v(Field{"pickoff", Rule::kNone, kRange, kOpt}, c.pickoff...);
     v(Field{"torquer", Rule::kNone, kRange, kOpt}, c.torquer...);
-    v(Field{"seed", Rule::kNone, kRange, kOpt}, c.seed...);
+    v(Field{"seed", Rule::kNone, kRange, kOpt, nullptr, -kNoBound, kNoBound, "",
+            "any 64-bit value: it only names the noise streams"},
+      c.seed...);
     v(Field{"faults", Rule::kNone, kRange, kImplied}, c.faults...);
   }
 };
@@ -120,10 +126,9 @@ template <typename T>
     // (refused rather than ignored).
     if (c.spin_down_time_constant_s != T(0)) return {Status::kOutOfRange, "spin_down_time_constant_s"};
   }
-  if (!std::isfinite(c.tick_s)) return {Status::kNonFiniteInput, "tick_s"};
-  if (!(c.tick_s > T(0))) return {Status::kNonPositiveStep, "tick_s"};
-  if (!std::isfinite(c.spin_hz)) return {Status::kNonFiniteInput, "spin_hz"};
-  if (!(c.spin_hz > T(0))) return {Status::kOutOfRange, "spin_hz"};
+  // The stub's own numbers against their rows (tick, spin, spin-down, stop).
+  const FieldRefusal own = first_refusal<RealFields>(c);
+  if (own.status != Status::kOk) return own.check;
   if (c.plant == PlantKind::kGimbal && c.spin_hz > c.gimbal.max_spin_hz) return {Status::kOutOfRange, "spin_hz"};
   if (c.plant == PlantKind::kReport) {
     const ConfigCheck step = check_exact_step_at_start(c);

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 #include "gyro/attitude.hpp"
 #include "gyro/config_check.hpp"
@@ -78,11 +79,19 @@ struct FieldTable<FaultEvent<T>> {
   template <class Visit, class... C>
   static constexpr void visit(Visit&& v, C&... c) {
     constexpr Presence kImplied = Presence::kImplied;
+    constexpr const char* kTicks = "any tick count; start + duration within 64 bits (check())";
     v(Field{"kind", Rule::kNone, Status::kOutOfRange, kImplied}, c.kind...);
-    v(Field{"start_tick", Rule::kNone, Status::kOutOfRange, kImplied}, c.start_tick...);
-    v(Field{"duration_ticks", Rule::kNone, Status::kOutOfRange, kImplied}, c.duration_ticks...);
-    v(Field{"axis", Rule::kNone, Status::kOutOfRange, kImplied}, c.axis...);
-    v(Field{"magnitude", Rule::kNone, Status::kOutOfRange, kImplied}, c.magnitude...);
+    v(Field{"start_tick", Rule::kNone, Status::kOutOfRange, kImplied, nullptr, -kNoBound, kNoBound, "ticks", kTicks},
+      c.start_tick...);
+    v(Field{"duration_ticks", Rule::kNone, Status::kOutOfRange, kImplied, nullptr, -kNoBound, kNoBound, "ticks",
+            kTicks},
+      c.duration_ticks...);
+    v(Field{"axis", Rule::kFinite, Status::kOutOfRange, kImplied, nullptr, -1.0, 1.0, "",
+            "0 pitch, 1 yaw, -1 both"}, c.axis...);
+    v(Field{"magnitude", Rule::kFinite, Status::kOutOfRange, kImplied, nullptr, -1e12, 1e12, "rad, torque or s",
+            "a bias jump's rad or a saturated torquer's torque (consistent units), or a spin failure's time "
+            "constant (> 0, check())"},
+      c.magnitude...);
   }
 };
 
@@ -174,9 +183,14 @@ template <typename T>
     const auto kind = static_cast<std::uint8_t>(f.kind);
     if (kind >= static_cast<std::uint8_t>(kFaultKindCount)) return {Status::kOutOfRange, n.kind};
     if (f.kind == FaultKind::kNone) continue;
-    if (f.axis < -1 || f.axis > 1) return {Status::kOutOfRange, n.axis};
+    // The slot's own numbers against their rows, named with the slot.
+    ConfigCheck own = first_refusal<CountFields>(f).check;
+    if (own.ok()) own = first_refusal<RealFields>(f).check;
+    if (!own.ok()) {
+      own.field = own.field != nullptr && std::string_view(own.field) == "axis" ? n.axis : n.magnitude;
+      return own;
+    }
     if (f.duration_ticks > ~std::uint64_t{0} - f.start_tick) return {Status::kOutOfRange, n.duration_ticks};
-    if (!std::isfinite(f.magnitude)) return {Status::kNonFiniteInput, n.magnitude};
     if (f.kind == FaultKind::kSpinMotorFailure && !(f.magnitude > T(0))) return {Status::kOutOfRange, n.magnitude};
   }
   return {};

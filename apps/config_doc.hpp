@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -18,6 +19,7 @@
 
 #include "gyro/component_types.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "scenario_defaults.hpp"
 
 namespace gyro::doc {
 
@@ -34,6 +36,9 @@ std::string default_text(const Field& f, const M& m) {
   if (f.presence == Presence::kRequired) return "required";
   if constexpr (std::is_same_v<M, bool>) {
     return m ? "true" : "false";
+  } else if constexpr (kHasEnumNames<M>) {
+    const char* name = enum_name(m);
+    return name != nullptr ? std::string("`\"") + name + "\"`" : "";
   } else if constexpr (std::is_arithmetic_v<M>) {
     return number(static_cast<double>(m));
   } else if constexpr (std::is_base_of_v<Eigen::EigenBase<M>, M>) {
@@ -45,17 +50,29 @@ std::string default_text(const Field& f, const M& m) {
   }
 }
 
-inline std::string range_text(const Field& f) {
-  if (f.rule == Rule::kNone) return "true, false";
-  if (!std::isfinite(f.lower) && !std::isfinite(f.upper)) return "finite";
-  const bool open = f.rule == Rule::kPositive && !(f.lower > 0.0);
-  return std::string(open ? "(" : "[") + number(f.lower) + ", " + number(f.upper) + "]";
+template <class M>
+std::string range_text(const Field& f, const M&) {
+  if constexpr (std::is_same_v<M, bool>) {
+    return "true, false";
+  } else if constexpr (kHasEnumNames<M>) {
+    constexpr auto names = enum_names(M{});
+    std::string s;
+    for (std::size_t i = 0; i < names.size(); ++i) s += std::string(i ? ", " : "") + "`\"" + names[i] + "\"`";
+    return s;
+  } else {
+    if (!std::isfinite(f.lower) && !std::isfinite(f.upper)) return f.rule == Rule::kNone ? "any" : "finite";
+    const bool open = f.rule == Rule::kPositive && !(f.lower > 0.0);
+    return std::string(open ? "(" : "[") + number(f.lower) + ", " + number(f.upper) + "]";
+  }
 }
 
 // One table: a row per field given in files (implied fields are set from elsewhere), with the
-// key as a file spells it (its section, then its name after `strip`).
+// key as a file spells it (its section, then its name after `strip`). `defaults` holds what a
+// file left out gets; `default_notes` replaces that text for a field whose default is no
+// number (another field's value), by name.
 template <class Config>
-std::string table(const Config& defaults, const std::string& strip = "") {
+std::string table(const Config& defaults, const std::string& strip = "",
+                  const std::map<std::string, std::string>& default_notes = {}) {
   std::ostringstream out;
   out << "| key | unit | default | range | rule |\n|---|---|---|---|---|\n";
   visit_fields(
@@ -68,12 +85,26 @@ std::string table(const Config& defaults, const std::string& strip = "") {
           std::string name = f.name;
           if (!strip.empty() && name.rfind(strip, 0) == 0) name = name.substr(strip.size());
           const std::string key = (f.section ? std::string(f.section) + "." : "") + name;
-          out << "| `" << key << "` | " << (f.unit && *f.unit ? f.unit : "–") << " | " << default_text(f, m) << " | "
-              << range_text(f) << " | " << (f.why ? f.why : "") << " |\n";
+          const auto note = default_notes.find(f.name);
+          out << "| `" << key << "` | " << (f.unit && *f.unit ? f.unit : "–") << " | "
+              << (note != default_notes.end() ? note->second : default_text(f, m)) << " | " << range_text(f, m)
+              << " | " << (f.why ? f.why : "") << " |\n";
         }
       },
       defaults);
   return out.str();
+}
+
+// The defaults a scenario gives (apps/scenario_defaults.hpp).
+inline SimulatedGyroConfig<double> scenario_gyro() {
+  SimulatedGyroConfig<double> c{};
+  c.seed = sil::kScenarioSeed;
+  return c;
+}
+inline GimbalPlantConfig<double> scenario_gimbal() {
+  GimbalPlantConfig<double> g{};
+  sil::set_scenario_envelope(g);
+  return g;
 }
 
 // The generated tables, by marker name.
@@ -86,6 +117,14 @@ struct Generated {
 inline std::vector<Generated> generated_tables() {
   return {
       {"scenarios.md", "component fields", table(GyroComponentConfig<double>{})},
+      {"scenarios.md", "stub fields", table(scenario_gyro())},
+      {"scenarios.md", "model fields", table(GyroModelConfig<double>{})},
+      {"scenarios.md", "error source fields", table(AxisErrorSources<double>{})},
+      {"scenarios.md", "gimbal plant fields",
+       table(scenario_gimbal(), "",
+             {{"inner_friction", "`rotor.friction`"},
+              {"outer_friction", "`rotor.friction`"},
+              {"motor_torque_limit", "none: to be given with `spin_drive` `\"motor\"`"}})},
       {"scenarios.md", "pickoff fields", table(PickoffModel<double>{})},
       {"scenarios.md", "torquer fields", table(TorquerModel<double>{})},
       {"component.md", "component fields", table(GyroComponentConfig<double>{})},

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "printable.hpp"
+#include "scenario_defaults.hpp"
 
 namespace gyro::sil {
 
@@ -426,9 +427,7 @@ void parse_gimbal(const Reader& r, SimulatedGyroConfig<double>& c) {
   // The scenario's defaults: the bearings' friction the rotor's, a wide envelope.
   g.inner_friction = c.gyro.friction;
   g.outer_friction = c.gyro.friction;
-  g.max_body_rate_rad_s = 100;
-  g.max_torque = 1e3;
-  g.max_specific_force = 1e4;
+  set_scenario_envelope(g);
   read_fields(r, g, nullptr);
   // Optional in the table (a free rotor has no motor), required by the default drive.
   if (g.spin_drive == SpinDrive::kMotor && !r.has("motor_torque_limit")) {
@@ -439,7 +438,7 @@ void parse_gimbal(const Reader& r, SimulatedGyroConfig<double>& c) {
 void parse_gyro(const Reader& g, const RunSpec& run, Scenario& s) {
   SimulatedGyroConfig<double>& c = s.gyro;
   c.tick_s = run.tick_s;
-  c.seed = 1;  // the scenario's default
+  c.seed = kScenarioSeed;
   for (const char* section : {"rotor", "limits"}) {
     std::vector<std::string_view> keys = field_keys(c.gyro, section);
     for (std::string_view k : field_keys(c, section)) keys.push_back(k);

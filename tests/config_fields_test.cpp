@@ -214,15 +214,12 @@ TEST(ConfigFields, GivenTheScenarioDocsWHENComparedWithTheTablesTHENTheyAgree) {
   const GimbalPlantConfig<double> gimbal{};
   expect_documented("### `component` (the flight software)", component);
   expect_documented("#### `gyro.gimbal` (plant `gimbal`)", gimbal);
+  expect_documented("#### `gyro.errors.pitch` and `gyro.errors.yaw` (plant `report`)", AxisErrorSources<double>{});
 
-  // gyro: the model's and the stub's fields, the pickoff and torquer ones, the error sources.
+  // gyro: the model's and the stub's fields, the pickoff and torquer ones, the error sources' objects.
   const std::vector<DocRow> rows = doc_table("### `gyro` (the simulated hardware)");
   std::set<std::string> documented;
-  std::string all;
-  for (const DocRow& r : rows) {
-    documented.insert(r.keys.begin(), r.keys.end());
-    all += r.text;
-  }
+  for (const DocRow& r : rows) documented.insert(r.keys.begin(), r.keys.end());
   std::set<std::string> fields = {"plant", "faults"};  // schema keys, not fields
   const auto expect_row = [&](const Field& f, const std::string& key) {
     fields.insert(key);
@@ -237,13 +234,9 @@ TEST(ConfigFields, GivenTheScenarioDocsWHENComparedWithTheTablesTHENTheyAgree) {
     using M = std::decay_t<decltype(member)>;
     if (f.presence == Presence::kImplied) return;
     if constexpr (std::is_same_v<M, GyroErrorSources<double>>) {
+      // The objects here, their keys in their own generated table (below).
       visit_fields([&](const Field& axis, const auto&) { expect_row(axis, std::string(f.name) + "." + axis.name); },
                    member);
-      visit_fields(
-          [&](const Field& e, const auto&) {
-            EXPECT_NE(all.find(std::string("`") + e.name + "`"), std::string::npos) << e.name;
-          },
-          member.pitch);
     } else if constexpr (kHasFieldTable<M>) {
       visit_fields([&](const Field& g, const auto&) { expect_row(g, g.name); }, member);
     } else {

@@ -13,6 +13,7 @@
 
 #include "config_doc.hpp"
 #include "gyro/component_config.hpp"
+#include "gyro/report_sample.hpp"
 #include "gyro/seeker_example.hpp"
 #include "gyro/simulated_gyro.hpp"
 
@@ -96,6 +97,135 @@ TEST(ConfigFields, GivenTheSeekerComponentWHENOneNumberBreaksItsRuleTHENCheckNam
       },
       good);
   EXPECT_GE(breached, 2 * 19 + 6);  // the 19 numbers and 6 counts with a rule of their own
+}
+
+// Every number of the stub's and the model's tables has a finite range, a unit (or none for
+// a ratio) and a reason; only counts that may take any 64-bit value are left unbounded.
+TEST(ConfigFields, GivenTheStubAndModelTablesWHENListedTHENEveryNumberHasBothBoundsAndAReason) {
+  const std::set<std::string> any_value = {"seed", "start_tick", "duration_ticks"};
+  int numbers = 0;
+  const auto expect_bounded = [&](const auto& config) {
+    visit_fields(
+        [&](const Field& f, const auto& member) {
+          using M = std::decay_t<decltype(member)>;
+          constexpr bool kNumber = std::is_floating_point_v<M> || std::is_base_of_v<Eigen::EigenBase<M>, M> ||
+                                   (std::is_integral_v<M> && !std::is_same_v<M, bool>);
+          if constexpr (kNumber) {
+            ++numbers;
+            ASSERT_NE(f.why, nullptr) << f.name;
+            EXPECT_GT(std::string(f.why).size(), 10u) << f.name;
+            if (any_value.count(f.name)) {
+              EXPECT_EQ(f.rule, Rule::kNone) << f.name;
+              EXPECT_NE(std::string(f.why).find("any"), std::string::npos) << f.name;
+              return;
+            }
+            EXPECT_NE(f.rule, Rule::kNone) << f.name;
+            EXPECT_TRUE(std::isfinite(f.lower) && std::isfinite(f.upper)) << f.name;
+            EXPECT_LT(f.lower, f.upper) << f.name;
+            ASSERT_NE(f.unit, nullptr) << f.name;
+          }
+        },
+        config);
+  };
+  const SimulatedGyroConfig<double> stub{};
+  expect_bounded(stub);
+  expect_bounded(stub.gyro);
+  expect_bounded(stub.gyro.errors.pitch);
+  expect_bounded(stub.gimbal);
+  expect_bounded(stub.pickoff);
+  expect_bounded(stub.torquer);
+  expect_bounded(stub.faults[0]);
+  EXPECT_EQ(numbers, 5 + 11 + 6 + 20 + 5 + 2 + 4);
+}
+
+// The configurations the repository ships keep every new bound.
+TEST(ConfigFields, GivenTheShippedConfigurationsWHENCheckedTHENAccepted) {
+  EXPECT_TRUE(check(SeekerExample<double>::stub()).ok());
+  EXPECT_TRUE(check(SeekerExample<float>::stub()).ok());
+  EXPECT_TRUE(check(SeekerExample<double>::gimbal()).ok());
+  EXPECT_TRUE(check(ReportSample<double>::config()).ok());
+  EXPECT_TRUE(check(ReportSample<float>::config()).ok());
+  SimulatedGyroConfig<double> report = SeekerExample<double>::stub();
+  report.plant = PlantKind::kReport;
+  report.gyro = ReportSample<double>::config();
+  report.spin_hz = ReportSample<double>::kSpinHz;
+  report.spin_down_time_constant_s = 20.0;
+  report.gimbal_stop_rad = 0.5;
+  EXPECT_TRUE(check(report).ok()) << check(report).field;
+}
+
+// A value beyond one of the stub's or the model's bounds: refused, and the message names the
+// field, the value and the bound.
+TEST(ConfigFields, GivenAValueBeyondAStubOrModelBoundWHENCheckedTHENTheMessageNamesTheField) {
+  const auto message = [](const ConfigCheck& r) {
+    char buf[256];
+    (void)format_refusal(r, nullptr, buf, sizeof buf);
+    return std::string(buf);
+  };
+  struct Case {
+    const char* field;
+    const char* text;  // a part of the message
+    ConfigCheck refusal;
+  };
+  std::vector<Case> cases;
+  {
+    SimulatedGyroConfig<double> c = SeekerExample<double>::stub();
+    c.spin_hz = 2e5;
+    c.gimbal.max_spin_hz = 2e5;
+    cases.push_back({"max_spin_hz", "above its upper bound (100000)", check(c)});
+    c = SeekerExample<double>::stub();
+    c.faults[2] = {FaultKind::kSaturatedTorquer, 5, 0, 0, 2e12};
+    cases.push_back({"faults[2].magnitude", "above its upper bound (1e+12)", check(c)});
+    c = SeekerExample<double>::stub();
+    c.plant = PlantKind::kReport;
+    c.gyro = ReportSample<double>::config();
+    c.spin_hz = ReportSample<double>::kSpinHz;
+    c.spin_down_time_constant_s = 2e9;
+    cases.push_back({"spin_down_time_constant_s", "above its upper bound (1e+09)", check(c)});
+  }
+  {
+    GimbalPlantConfig<double> g = SeekerExample<double>::gimbal();
+    g.coulomb_rate_scale_rad_s = 2.0;
+    cases.push_back({"coulomb_rate_scale_rad_s", "above its upper bound (1)", check(g)});
+    g = SeekerExample<double>::gimbal();
+    g.spin_servo_bandwidth_rad_s = 2e6;
+    cases.push_back({"spin_servo_bandwidth_rad_s", "above its upper bound (1e+06)", check(g)});
+    g = SeekerExample<double>::gimbal();
+    g.mass_unbalance = -2e12;
+    cases.push_back({"mass_unbalance", "below its lower bound (-1e+12)", check(g)});
+    g = SeekerExample<double>::gimbal();
+    g.max_specific_force = 1e8;
+    cases.push_back({"max_specific_force", "above its upper bound (1e+07)", check(g)});
+    g = SeekerExample<double>::gimbal();
+    g.spin_down_time_s = 2e9;
+    cases.push_back({"spin_down_time_s", "above its upper bound (1e+09)", check(g)});
+  }
+  {
+    GyroModelConfig<double> m = ReportSample<double>::config();
+    m.errors.yaw.torquer_cross_coupling = 1.5;
+    cases.push_back({"errors.yaw.torquer_cross_coupling", "above its upper bound (1)", check(m)});
+    m = ReportSample<double>::config();
+    m.errors.pitch.static_drift_rad_s = -2.0;
+    cases.push_back({"errors.pitch.static_drift_rad_s", "below its lower bound (-1)", check(m)});
+    m = ReportSample<double>::config();
+    m.errors.pitch.coulomb_friction_rad_s = -1e-3;
+    cases.push_back({"errors.pitch.coulomb_friction_rad_s", "is below 0 (0)", check(m)});
+    m = ReportSample<double>::config();
+    m.errors.yaw.in_plane_erection_1_s = 20.0;
+    cases.push_back({"errors.yaw.in_plane_erection_1_s", "above its upper bound (10)", check(m)});
+  }
+  for (const Case& k : cases) {
+    EXPECT_EQ(k.refusal.status, Status::kOutOfRange) << k.field;
+    ASSERT_NE(k.refusal.field, nullptr) << k.field;
+    EXPECT_STREQ(k.refusal.field, k.field);
+    const std::string m = message(k.refusal);
+    EXPECT_EQ(m.rfind(std::string(k.field) + " = ", 0), 0u) << m;
+    EXPECT_NE(m.find(k.text), std::string::npos) << m;
+  }
+  // float: the same rows.
+  GimbalPlantConfig<float> f = SeekerExample<float>::gimbal();
+  f.coulomb_rate_scale_rad_s = 2.0f;
+  EXPECT_STREQ(check(f).field, "coulomb_rate_scale_rad_s");
 }
 
 TEST(ConfigFields, GivenADoubleStubConfigurationWHENCastToFloatTHENEveryFieldIsCarried) {

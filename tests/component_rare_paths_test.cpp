@@ -252,17 +252,17 @@ TEST(ComponentModes, GivenAReadingOffTheCagedPredictionWhenUncagedThenTheTickRep
 
 // ---- the torque shaper's reach ----------------------------------------------------------------
 
-// The shaper spaces its taps by the fewest ticks m with m beta dt >= pi/2, up to 8 ticks;
+// The shaper spaces its taps by the fewest ticks m with m beta dt >= pi/2, up to 15 ticks;
 // beyond, it is off. For J1 = J2 = J the nutation is beta = H / J exactly (the friction
 // terms cancel in beta^2 = (f^2 + H^2) / J^2 - (f / J)^2), so a spin readback picks
-// beta dt = pi/15 (m = 8: on, its first tap a = 1 / (2 (1 - cos(8 pi/15))) = 0.4527) or
-// pi/17 (m would be 9: off, a step of the law passes at once). The step: a gimbal reading
+// beta dt = pi/29 (m = 15: on, its first tap a = 1 / (2 (1 - cos(15 pi/29))) = 0.4730) or
+// pi/31 (m would be 16: off, a step of the law passes at once). The step: a gimbal reading
 // that appears while caged, whose loop asks a constant rate from then on.
-TEST(ComponentTorqueShaper, GivenANutationNeedingEightTicksBetweenTapsThenShapedAndNineThenOff) {
+TEST(ComponentTorqueShaper, GivenANutationNeedingFifteenTicksBetweenTapsThenShapedAndSixteenThenOff) {
   GyroComponentConfig<double> c = kSeeker;
-  c.min_spin_hz = 10.0;
+  c.min_spin_hz = 1.0;
   const double j = c.pitch_inertia;
-  for (const int steps_per_half_turn : {15, 17}) {
+  for (const int steps_per_half_turn : {29, 31}) {
     SCOPED_TRACE(steps_per_half_turn);
     const double beta_dt = kPi<double> / steps_per_half_turn;
     Bench b(c);
@@ -273,15 +273,41 @@ TEST(ComponentTorqueShaper, GivenANutationNeedingEightTicksBetweenTapsThenShaped
     b.port.reading.gimbal_angle_rad = Vector2<double>(2e-3, 0.0);
     ASSERT_EQ(b.step(), Status::kOk);
     const double first = b.port.torque_written(1);
-    b.run(20);  // beyond two spacings of 8
+    b.run(35);  // beyond two spacings of 15
     ASSERT_EQ(b.component.mode(), GyroMode::kCaged);
     const double steady = b.port.torque_written(1);
     ASSERT_GT(std::abs(steady), 1e-4);
-    if (steps_per_half_turn == 15) {
-      EXPECT_NEAR(first / steady, 1 / (2 * (1 - std::cos(8 * beta_dt))), 1e-3) << "shaped, taps 8 ticks apart";
+    if (steps_per_half_turn == 29) {
+      EXPECT_NEAR(first / steady, 1 / (2 * (1 - std::cos(15 * beta_dt))), 1e-3) << "shaped, taps 15 ticks apart";
     } else {
       EXPECT_NEAR(first / steady, 1.0, 1e-3) << "not shaped";
     }
+  }
+}
+
+// A tick aliasing the nutation shapes with its folded phase while m beta dt is within a turn:
+// beta dt = 3.77 (the seeker at 1 kHz) excites the nutation as 2 pi - 3.77 = 2.51 does (m = 1,
+// a = 1 / (2 (1 - cos 2.51))); a whole turn a tick, or a turn and 2.51, none.
+TEST(ComponentTorqueShaper, GivenATickAliasingTheNutationThenShapedByTheFoldedPhaseWithinATurn) {
+  GyroComponentConfig<double> c = kSeeker;
+  c.min_spin_hz = 1.0;
+  const double j = c.pitch_inertia;
+  const double seeker = 3.77;
+  for (const double beta_dt : {seeker, 2 * kPi<double>, 2 * kPi<double> + (2 * kPi<double> - seeker)}) {
+    SCOPED_TRACE(beta_dt);
+    Bench b(c);
+    ASSERT_TRUE(b.ok);
+    b.port.reading.spin_hz = beta_dt / c.tick_s * j / (2 * kPi<double> * c.spin_inertia);
+    b.run(40);
+    b.port.reading.gimbal_angle_rad = Vector2<double>(2e-3, 0.0);
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_NE(b.tm().flags & kNutationUnresolved, 0u) << "the pickoffs alias the nutation";
+    const double first = b.port.torque_written(1);
+    b.run(10);
+    const double steady = b.port.torque_written(1);
+    ASSERT_GT(std::abs(steady), 1e-4);
+    const double expected = beta_dt == seeker ? 1 / (2 * (1 - std::cos(2 * kPi<double> - seeker))) : 1.0;
+    EXPECT_NEAR(first / steady, expected, 1e-3);
   }
 }
 

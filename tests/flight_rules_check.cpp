@@ -20,6 +20,7 @@
 #include "gyro/board/register_board_port.hpp"
 #include "gyro/status.hpp"
 #include "gyro/stop_protection.hpp"
+#include "gyro/torque_shaper.hpp"
 
 namespace gyro {
 template struct RotorTransition<float>;

@@ -21,6 +21,7 @@
 #include "gyro/gyro_port.hpp"
 #include "gyro/persistence.hpp"
 #include "gyro/stop_protection.hpp"
+#include "gyro/torque_shaper.hpp"
 
 namespace gyro {
 
@@ -440,11 +441,9 @@ class GyroComponent {
   // A step of torque sets the rotor nutating (amplitude dT / (H beta)), and the plant's
   // nutation then drifts out of phase with the estimator's (the gimbal's inertias change with
   // its angles, the rotor's momentum with the inner gimbal's roll). So the torque written is
-  // the torque law's through a three-tap filter with a zero at the nutation frequency:
-  //   a w[k] + (1 - 2a) w[k-m] + a w[k-2m],  a = 1 / (2 (1 - cos(m beta dt))),
-  // m the fewest ticks with m beta dt >= pi/2 (so all taps are >= 0 and the torque never
-  // exceeds the law's largest), m ticks of delay: a step excites no nutation at beta. Off when
-  // the tick aliases the nutation or m would pass kShaperMaxSpacing; safe mode cuts at once.
+  // the torque law's through a three-tap filter with a zero at the nutation frequency
+  // (gyro/torque_shaper.hpp), m ticks of delay: a step excites no nutation at beta. Off when
+  // m would pass kShaperMaxSpacing; safe mode cuts at once.
   [[nodiscard]] Vector2<T> shape_torque(const Vector2<T>& wanted) noexcept {
     if (mode_ == GyroMode::kFault) {
       wanted_history_.fill(Vector2<T>::Zero());  // leaving safe mode starts from rest
@@ -521,14 +520,9 @@ class GyroComponent {
       const T per_tick = nutation_beta_ * config_.tick_s;  // nutation phase a tick
       // Fewer than two ticks per nutation period: the pickoffs alias the nutation.
       nutation_aliased_ = per_tick > kPi<T>;
-      shaper_spacing_ = 0u;
-      if (per_tick > T(0) && per_tick < kPi<T>) {
-        const T spacing = std::ceil(kPi<T> / (T(2) * per_tick));
-        if (spacing <= T(kShaperMaxSpacing)) {
-          shaper_spacing_ = static_cast<std::uint32_t>(spacing);
-          shaper_edge_ = T(1) / (T(2) * (T(1) - std::cos(spacing * per_tick)));
-        }
-      }
+      const ShaperDesign<T> shaper = design_shaper(per_tick);
+      shaper_spacing_ = shaper.spacing;
+      shaper_edge_ = shaper.edge;
     }
   }
 
@@ -570,7 +564,6 @@ class GyroComponent {
   template <typename S>
   static constexpr S kShaperSpinTolerance = S(1e-3);
   // The torque shaper (shape_torque): the torque law's last outputs (2 kShaperMaxSpacing + 1 read).
-  static constexpr std::uint32_t kShaperMaxSpacing = 8;
   // A power of two of at least 2 kShaperMaxSpacing + 1 entries: the ring's index is masked (the
   // unsigned difference wraps to the same entry), not divided.
   static constexpr std::uint32_t kShaperLength = 32;

@@ -1,0 +1,47 @@
+// The torque shaper's design: a three-tap filter with a zero at the nutation frequency,
+//   a w[k] + (1 - 2a) w[k-m] + a w[k-2m],  a = 1 / (2 (1 - cos(m phi))),
+// m the fewest ticks with m phi >= pi/2 (every tap >= 0, so the output never exceeds the
+// largest input). phi is the nutation's phase a tick folded into [0, pi]: the ticks sample
+// the torque, so a tick of beta dt and one of 2 pi n +- beta dt excite the nutation alike;
+// the notch is kept while m beta dt is within a turn (below).
+// One design for the component (which applies it) and for the configuration contract (which
+// asks for the bearings' damping where there is none; docs/component.md).
+// No heap, no exceptions, no RTTI; C++17.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "gyro/rotor_parameters.hpp"
+
+namespace gyro {
+
+// The longest spacing m the component's history holds (2 m + 1 torques).
+inline constexpr std::uint32_t kShaperMaxSpacing = 15;
+
+template <typename T>
+struct ShaperDesign {
+  std::uint32_t spacing{0};  // m; 0: no shaper (phi is 0, m would pass kShaperMaxSpacing, or m beta dt a turn)
+  T edge{};                  // a
+};
+
+// The design for a nutation phase of `per_tick` rad a tick (beta dt, >= 0 and finite).
+template <typename T>
+[[nodiscard]] ShaperDesign<T> design_shaper(T per_tick) noexcept {
+  ShaperDesign<T> d;
+  const T turn = T(2) * kPi<T>;
+  const T wrapped = per_tick - turn * std::floor(per_tick / turn);
+  const T folded = std::min(wrapped, turn - wrapped);
+  if (!(folded > T(0))) return d;
+  const T spacing = std::ceil(kPi<T> / (T(2) * folded));
+  // A relative error e in beta lets through about e m beta dt of a step's nutation: past a
+  // turn of m beta dt (a tick aliasing the nutation by a turn or more) the notch is no better
+  // than none, and its 2 m ticks of delay only slow the loops.
+  if (!(spacing <= T(kShaperMaxSpacing)) || !(spacing * per_tick <= turn)) return d;
+  d.spacing = static_cast<std::uint32_t>(spacing);
+  d.edge = T(1) / (T(2) * (T(1) - std::cos(spacing * folded)));
+  return d;
+}
+
+}  // namespace gyro

@@ -1,0 +1,73 @@
+// The torque shaper's design (gyro/torque_shaper.hpp): the spacing m and first tap a for a
+// nutation phase a tick, folded into [0, pi], and where no shaper can be designed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gyro/torque_shaper.hpp"
+
+namespace gyro {
+namespace {
+
+constexpr double kTurn = 2 * kPi<double>;
+
+// a = 1 / (2 (1 - cos(m phi))) for the folded phase phi.
+double first_tap(int m, double phi) { return 1 / (2 * (1 - std::cos(m * phi))); }
+
+TEST(TorqueShaperDesign, GivenPhasesBelowHalfATurnThenTheFewestTicksReachingAQuarterTurn) {
+  const ShaperDesign<double> seeker = design_shaper(1.88);  // the seeker at 2 kHz
+  EXPECT_EQ(seeker.spacing, 1u);
+  EXPECT_NEAR(seeker.edge, first_tap(1, 1.88), 1e-15);
+  const ShaperDesign<double> nyquist = design_shaper(kPi<double>);
+  EXPECT_EQ(nyquist.spacing, 1u);
+  EXPECT_DOUBLE_EQ(nyquist.edge, 0.25) << "taps 1/4, 1/2, 1/4: a zero at half the tick rate";
+  const ShaperDesign<double> quarter = design_shaper(kPi<double> / 2);
+  EXPECT_EQ(quarter.spacing, 1u);
+  EXPECT_DOUBLE_EQ(quarter.edge, 0.5) << "taps 1/2, 0, 1/2";
+  EXPECT_EQ(design_shaper(kPi<double> / 2 * 0.999).spacing, 2u);
+}
+
+// A tick aliasing the nutation by less than a turn of m beta dt: the folded phase's design.
+TEST(TorqueShaperDesign, GivenAnAliasedPhaseWithinATurnThenTheDesignOfItsFoldedPhase) {
+  // The seeker at 1 kHz: beta dt = 3.77 rad, folded 2 pi - 3.77 = 2.51.
+  const double seeker = 3769.964 * 1e-3;
+  const ShaperDesign<double> d = design_shaper(seeker);
+  EXPECT_EQ(d.spacing, 1u);
+  EXPECT_NEAR(d.edge, first_tap(1, kTurn - seeker), 1e-12);
+  const ShaperDesign<double> folded = design_shaper(kTurn - seeker);
+  EXPECT_EQ(folded.spacing, d.spacing);
+  EXPECT_NEAR(folded.edge, d.edge, 1e-12);
+  const ShaperDesign<double> two = design_shaper(kTurn - 1.2);  // m = 2: 2 x 5.08 rad, past a turn
+  EXPECT_EQ(two.spacing, 0u);
+  EXPECT_EQ(design_shaper(kTurn - 3.0).spacing, 1u) << "m beta dt = 3.28";
+}
+
+// Past a turn of m beta dt, a few per cent of error in beta puts the notch anywhere: none.
+TEST(TorqueShaperDesign, GivenATickAliasingTheNutationByATurnOrMoreThenNoShaper) {
+  for (const double phi : {0.3, 1.2, 2.51, 3.0}) {
+    SCOPED_TRACE(phi);
+    ASSERT_GT(design_shaper(phi).spacing, 0u);
+    for (const double aliased : {kTurn + phi, 2 * kTurn - phi, 5 * kTurn - phi, 7 * kTurn + phi}) {
+      EXPECT_EQ(design_shaper(aliased).spacing, 0u) << aliased;
+    }
+  }
+}
+
+TEST(TorqueShaperDesign, GivenAPhaseNeedingMoreThanFifteenTicksOrNoneThenNoShaper) {
+  const ShaperDesign<double> longest = design_shaper(kPi<double> / 29);  // m = ceil(14.5)
+  EXPECT_EQ(longest.spacing, kShaperMaxSpacing);
+  EXPECT_NEAR(longest.edge, first_tap(15, kPi<double> / 29), 1e-12);
+  EXPECT_EQ(design_shaper(kPi<double> / 31).spacing, 0u) << "m would be 16";
+  EXPECT_EQ(design_shaper(0.0).spacing, 0u);
+  EXPECT_EQ(design_shaper(kTurn).spacing, 0u) << "a whole turn a tick: every torque step excites alike";
+  EXPECT_EQ(design_shaper(3 * kTurn + kPi<double> / 31).spacing, 0u);
+}
+
+TEST(TorqueShaperDesign, GivenFloatThenTheSameSpacingAsDouble) {
+  for (const double phi : {0.2, 1.0, 2.0, 3.1, 10.0, 100.0}) {
+    EXPECT_EQ(design_shaper(static_cast<float>(phi)).spacing, design_shaper(phi).spacing) << phi;
+  }
+}
+
+}  // namespace
+}  // namespace gyro

@@ -6,6 +6,7 @@
 // behaviour; the mutant list names the test that kills each mutant.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -169,7 +170,7 @@ TEST(ComponentPickoffs, GivenAReadingExactlyAtThePickoffRangeThenAcceptedAndJust
   GyroComponentConfig<double> c = kSeeker;
   c.pickoff_range_rad = 4e-3;  // within one tick's jump bound of zero
   c.gimbal_cone_limit_rad = 4e-3;  // the contract: the cone within the range, the step within it
-  c.gimbal_stop_margin_rad = 1e-3;
+  c.gimbal_stop_margin_rad = 2e-3;  // the shaped torque's 3 ticks at the rate limit, and more
   c.max_pickoff_step_rad = 4e-3;
   Bench b(c);
   ASSERT_TRUE(b.ok);
@@ -347,11 +348,23 @@ TEST(ComponentNavigation, GivenABodyRateExactlyAtItsLimitThenUsedAndJustBeyondIt
   EXPECT_TRUE(b.raised(kNavInvalid));
 }
 
-// The nutation of stopping twice the larger rate limit (the margin's bound, as check() takes it).
-double stop_nutation(const GyroComponentConfig<double>& c) {
+// The margin's lower bound as check() takes it: the nutation of stopping twice the larger rate
+// limit, or the ticks at the rate limit before the shaped torque holds (1 + 2 m, m = 1 for the
+// seeker at 2 kHz), whichever is larger.
+double margin_floor(const GyroComponentConfig<double>& c) {
   const double h = 2.0 * 3.14159265358979323846 * c.nominal_spin_hz * c.spin_inertia;
   const double rate = std::max(c.max_pitch_rate_rad_s, c.max_yaw_rate_rad_s);
-  return 2.0 * rate / (std::sqrt(h * h + c.friction * c.friction) / std::sqrt(c.pitch_inertia * c.yaw_inertia));
+  const double nutation = 2.0 * rate / (std::sqrt(h * h + c.friction * c.friction) / std::sqrt(c.pitch_inertia * c.yaw_inertia));
+  return std::max(nutation, 3.0 * rate * c.tick_s);
+}
+
+// The cage gain's upper bound for the seeker: a quarter of its nutation frequency, to the
+// last bit as check() computes it (H / J for J1 = J2 up to rounding), below 1 / tick.
+double cage_ceiling(const GyroComponentConfig<double>& c) {
+  const double h = 2.0 * 3.14159265358979323846 * c.nominal_spin_hz * c.spin_inertia;
+  const double beta_sq =
+      detail::rate_matrix_terms(RotorParameters<double>{c.pitch_inertia, c.yaw_inertia, c.friction, h}).beta_sq;
+  return std::min(kCageNutationShare * std::sqrt(beta_sq), 1.0 / c.tick_s);
 }
 
 TEST(ComponentConfig, GivenEachLimitExactlyAtItsEdgeThenTheInclusiveOnesAreAcceptedAndTheStrictOnesRefused) {
@@ -362,15 +375,16 @@ TEST(ComponentConfig, GivenEachLimitExactlyAtItsEdgeThenTheInclusiveOnesAreAccep
     bool accepted;
   };
   const Case cases[] = {
-      {"cage_gain_1_s", [](C& c) { c.cage_gain_1_s = 1.0 / c.tick_s; }, true},  // gain * tick = 1
+      {"cage_gain_1_s", [](C& c) { c.cage_gain_1_s = cage_ceiling(c); }, true},  // beta / 4
+      {"cage_gain_1_s", [](C& c) { c.cage_gain_1_s = std::nextafter(cage_ceiling(c), 1e9); }, false},
       {"estimator_gain", [](C& c) { c.estimator_gain = 1.0; }, true},
       {"gimbal_cone_limit_rad", [](C& c) { c.gimbal_cone_limit_rad = c.pickoff_range_rad = kPi<double> / 2; }, true},
       {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = c.gimbal_cone_limit_rad; }, false},
       {"min_spin_hz", [](C& c) { c.min_spin_hz = c.nominal_spin_hz; }, false},
       {"min_spin_hz", [](C& c) { c.min_spin_hz = 0.0; }, true},
       {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = 0.0; }, false},  // < a tick at the rate limit
-      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = std::nextafter(stop_nutation(c), 0.0); }, false},
-      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = stop_nutation(c); }, true},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = std::nextafter(margin_floor(c), 0.0); }, false},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = margin_floor(c); }, true},
   };
   for (const Case& k : cases) {
     C c = kSeeker;

@@ -179,6 +179,32 @@ TEST(ComponentConfig, GivenAZeroCageGainTHENRefusedForTheStopProtection) {
   EXPECT_EQ(r.bound, 2000);
 }
 
+// A loop commanding the spin axis's rate from the gimbal angles drives the nutation it reads:
+// the cage gain stays below a quarter of the nutation frequency, and where no torque shaper
+// can be designed (a tick of under pi/30 of nutation phase), below the bearings' damping.
+TEST(ComponentConfig, GivenACageGainThatDrivesTheNutationTHENRefused) {
+  GyroComponentConfig<double> c = Seeker::component();
+  const double beta = 2 * kPi<double> * c.nominal_spin_hz * c.spin_inertia / c.pitch_inertia;  // J1 = J2
+  c.cage_gain_1_s = 1000;  // within 1 / tick (2000)
+  ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "cage_gain_1_s");
+  EXPECT_NEAR(r.bound, beta / 4, 1e-9 * beta);
+  EXPECT_NE(message(r).find("the nutation frequency / 4"), std::string::npos) << message(r);
+
+  c = Seeker::component();
+  c.tick_s = kPi<double> / 32 / beta;  // no shaper: m would be 16
+  c.cage_gain_1_s = 25;
+  r = check(c);
+  ASSERT_STREQ(r.field, "cage_gain_1_s");
+  EXPECT_NEAR(r.bound, c.friction / c.pitch_inertia, 1e-9) << "alpha = f / J";
+  EXPECT_NE(message(r).find("no torque shaper"), std::string::npos) << message(r);
+  c.cage_gain_1_s = 15;
+  EXPECT_TRUE(check(c).ok()) << message(check(c));
+  c.tick_s = kPi<double> / 28 / beta;  // m = 14: shaped, the bearings need not damp
+  c.cage_gain_1_s = 25;
+  EXPECT_TRUE(check(c).ok()) << message(check(c));
+}
+
 TEST(ComponentConfig, GivenSeveralBadFieldsWHENCheckAllTHENEveryRuleIsListed) {
   GyroComponentConfig<double> c = Seeker::component();
   c.max_pickoff_step_rad = 1.0;           // above the range

@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "gyro/component_types.hpp"
 #include "gyro/config_check.hpp"
 #include "gyro/exact_step_check.hpp"
 #include "gyro/gyro_model.hpp"
+#include "gyro/torque_shaper.hpp"
 
 namespace gyro {
 
@@ -37,7 +39,8 @@ inline constexpr double kJitterRateShare = 0.25;
 inline constexpr double kStepRateTicks = 2.0;       // a reading may move 2 ticks at the rate limit
 inline constexpr double kAuthorityFraction = 0.5;   // the torquer precesses at >= half the rate limit
 inline constexpr double kNutationShare = 0.1;       // a full-torque nutation within 1/10 of the small-angle limit
-inline constexpr double kMaxNutationPhasePerTick = 1e3;  // rad; beyond, float's phase keeps < 4 digits
+inline constexpr double kMaxNutationPhasePerTick = 1e3;
+inline constexpr double kCageNutationShare = 0.25;  // a caging loop within a quarter of the nutation frequency  // rad; beyond, float's phase keeps < 4 digits
 
 namespace component_detail {
 // The count that lasts `seconds` at tick `tick_s`.
@@ -99,15 +102,34 @@ void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
           "the smaller rate limit / 4 / (2 LSBs + 3 sigma)",
           "the pickoffs' rounding and noise alone would drive the caging loop and stop protection onto the rate limit");
   }
+  // A loop that commands the spin axis's rate from the gimbal angles (caging, stop
+  // protection) drives the nutation it reads: to first order its growth rate is the gain less
+  // the bearings' damping alpha = (f/2)(1/J1 + 1/J2). The torque shaper's zero keeps the loop's
+  // torques off the nutation; where no shaper can be designed, the bearings must damp it. And
+  // the loop stays below a quarter of the nutation frequency (an overdamped rotor has none).
+  const double friction = static_cast<double>(c.friction);
+  const detail::RateMatrixTerms<double> terms = detail::rate_matrix_terms(RotorParameters<double>{j1, j2, friction, h});
+  const double beta = terms.beta_sq > 0.0 ? std::sqrt(terms.beta_sq) : 0.0;
+  const std::uint32_t spacing = design_shaper(static_cast<T>(beta * tick)).spacing;
+  if (beta > 0.0) {
+    above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), kCageNutationShare * beta,
+          "the nutation frequency / 4", "a faster caging loop or stop protection would drive the nutation it reads");
+    if (spacing == 0u) {
+      above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), terms.alpha,
+            "the bearings' nutation damping (f/2)(1/J1 + 1/J2)",
+            "no torque shaper at this tick (gyro/torque_shaper.hpp): the caging loop would pump the nutation");
+    }
+  }
   // Cone, margin, pickoff range.
   above("gimbal_cone_limit_rad", cone, range, "pickoff_range_rad",
         "the pickoffs would saturate inside the cone: the gimbal could pass it unseen");
-  below("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), rate * tick,
-        "one tick at the rate limit", "the gimbal could cross the protection zone within a tick");
+  // The shaped torque holds the gimbal 2 m ticks after the protection first acts.
+  below("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), (1.0 + 2.0 * spacing) * rate * tick,
+        "(1 + 2 m) ticks at the rate limit (m the torque shaper's spacing)",
+        "the gimbal could cross the protection zone before the torque holds it");
   // Stopping the fastest outward motion flown (a slew at the rate limit with the body turning
   // as fast the other way) sets the rotor nutating by that rate over the nutation rate
   // sqrt(H^2 + f^2) / sqrt(J1 J2): the protection zone must hold that overshoot.
-  const double friction = static_cast<double>(c.friction);
   const double nutation_rate = std::sqrt(h * h + friction * friction) / std::sqrt(j1 * j2);
   below("gimbal_stop_margin_rad", static_cast<double>(c.gimbal_stop_margin_rad), 2.0 * rate / nutation_rate,
         "2 x the larger rate limit / the nutation rate",

@@ -163,7 +163,7 @@ struct FieldTable<GyroComponentConfig<T>> {
       c.max_torque...);
     v(Field{"friction_compensation", Rule::kNone, kRange, kOpt}, c.friction_compensation...);
     v(Field{"cage_gain_1_s", kPos, kRange, kReq, kNo, 0.1, 1e5, "1/s",
-            "caging pulls in within 10 s; gain x tick <= 1 (a monotone discrete loop); gain x pickoff jitter within a quarter of the rate limit; stop protection's gain"},
+            "caging pulls in within 10 s; gain x tick <= 1 (a monotone discrete loop); gain x pickoff jitter within a quarter of the rate limit; below a quarter of the nutation frequency; stop protection's gain"},
       c.cage_gain_1_s...);
     v(Field{"gimbal_cone_limit_rad", kPos, kRange, kReq, kNo, 1e-3, 1.5707963267948966, "rad",
             "within the pickoff range; the readout's pitch is within +-pi/2"},

@@ -4,6 +4,7 @@
 // gives every violated rule.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -202,6 +203,28 @@ TEST(ComponentConfig, GivenACageGainThatDrivesTheNutationTHENRefused) {
   EXPECT_TRUE(check(c).ok()) << message(check(c));
   c.tick_s = kPi<double> / 28 / beta;  // m = 14: shaped, the bearings need not damp
   c.cage_gain_1_s = 25;
+  EXPECT_TRUE(check(c).ok()) << message(check(c));
+}
+
+// The estimator corrects a fraction of the residual a tick: what its model misses of a tick's
+// motion (a hundredth) settles at that over the gain, within the residual limit. Without
+// correction (gain 0) the prediction drifts from the gimbal without bound.
+TEST(ComponentConfig, GivenAnEstimatorGainTooSmallForTheResidualLimitTHENRefused) {
+  GyroComponentConfig<double> c = Seeker::component();
+  const double rate = std::max(c.max_pitch_rate_rad_s, c.max_yaw_rate_rad_s);
+  const double floor = 0.01 * rate * c.tick_s / c.residual_limit_rad;
+  c.estimator_gain = 0;
+  ConfigCheck r = check(c);
+  ASSERT_STREQ(r.field, "estimator_gain");
+  EXPECT_NEAR(r.bound, floor, 1e-12 * floor);
+  EXPECT_NE(message(r).find("build up beyond the residual limit"), std::string::npos) << message(r);
+  c.estimator_gain = 0.99 * floor;
+  EXPECT_STREQ(check(c).field, "estimator_gain");
+  c.estimator_gain = floor;
+  EXPECT_TRUE(check(c).ok()) << message(check(c));
+  // The floor scales as 1 / residual_limit_rad: a tenfold looser limit takes a tenfold smaller gain.
+  c.residual_limit_rad *= 10;
+  c.estimator_gain = 0.11 * floor;
   EXPECT_TRUE(check(c).ok()) << message(check(c));
 }
 

@@ -39,8 +39,12 @@ inline constexpr double kJitterRateShare = 0.25;
 inline constexpr double kStepRateTicks = 2.0;       // a reading may move 2 ticks at the rate limit
 inline constexpr double kAuthorityFraction = 0.5;   // the torquer precesses at >= half the rate limit
 inline constexpr double kNutationShare = 0.1;       // a full-torque nutation within 1/10 of the small-angle limit
-inline constexpr double kMaxNutationPhasePerTick = 1e3;
-inline constexpr double kCageNutationShare = 0.25;  // a caging loop within a quarter of the nutation frequency  // rad; beyond, float's phase keeps < 4 digits
+inline constexpr double kMaxNutationPhasePerTick = 1e3;  // rad; beyond, float's phase keeps < 4 digits
+// The share of a tick's motion the estimator's model may miss: a hundredth (docs/
+// model-validity.md: open loop for a second against the gimbal, the corrected model is off by
+// at most 3.3e-3 rad over the whole grid, 2.8e-4 inside the envelope).
+inline constexpr double kModelRateError = 0.01;
+inline constexpr double kCageNutationShare = 0.25;  // a caging loop within a quarter of the nutation frequency
 
 namespace component_detail {
 // The count that lasts `seconds` at tick `tick_s`.
@@ -159,6 +163,14 @@ void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
   below("residual_limit_rad", static_cast<double>(c.residual_limit_rad),
         64.0 * static_cast<double>(std::numeric_limits<T>::epsilon()) * range, "64 epsilons of the pickoff range",
         "the scalar's rounding of a reading would latch a fault");
+  // The estimator turns its prediction by estimator_gain x the residual a tick: what its model
+  // misses of a tick's motion settles at that over the gain, which the residual limit must
+  // hold. Without correction the prediction drifts from the gimbal without bound, and the
+  // stop protection, which reads it, with it.
+  below("estimator_gain", static_cast<double>(c.estimator_gain),
+        kModelRateError * rate * tick / static_cast<double>(c.residual_limit_rad),
+        "a hundredth of a tick at the rate limit / residual_limit_rad",
+        "the model's error in a tick's motion would build up beyond the residual limit");
   if (!(c.residual_limit_rad < c.gimbal_cone_limit_rad)) {
     sink(refuse_above("residual_limit_rad", static_cast<double>(c.residual_limit_rad), cone, "gimbal_cone_limit_rad",
                       "every reading within the cone would pass: no fault detected"));

@@ -197,10 +197,20 @@ TEST(ComponentConfig, GivenACageGainThatDrivesTheNutationTHENRefused) {
   c.cage_gain_1_s = 25;
   r = check(c);
   ASSERT_STREQ(r.field, "cage_gain_1_s");
-  EXPECT_NEAR(r.bound, c.friction / c.pitch_inertia, 1e-9) << "alpha = f / J";
+  // alpha = f / J, less the stop protection's turn gain: the torquer's authority T / H (below
+  // the navigation's limit) over the sine of the protection cone.
+  const double h = 2 * kPi<double> * c.nominal_spin_hz * c.spin_inertia;
+  const double turn_gain = (c.max_torque / h) / std::sin(c.gimbal_cone_limit_rad - c.gimbal_stop_margin_rad);
+  EXPECT_NEAR(r.bound, c.friction / c.pitch_inertia - turn_gain, 1e-9);
   EXPECT_NE(message(r).find("no torque shaper"), std::string::npos) << message(r);
-  c.cage_gain_1_s = 15;
+  c.cage_gain_1_s = 0.99 * r.bound;
   EXPECT_TRUE(check(c).ok()) << message(check(c));
+  // A protection cone of 0.05 rad: the turn gain alone (1.33 rad/s / sin 0.05 = 27 1/s)
+  // exceeds the bearings' damping (20 1/s), and no cage gain will do.
+  c.gimbal_stop_margin_rad = c.gimbal_cone_limit_rad - 0.05;
+  r = check(c);
+  ASSERT_STREQ(r.field, "cage_gain_1_s") << message(r);
+  EXPECT_LT(r.bound, 0.0);
   c.tick_s = kPi<double> / 28 / beta;  // m = 14: shaped, the bearings need not damp
   c.cage_gain_1_s = 25;
   EXPECT_TRUE(check(c).ok()) << message(check(c));

@@ -1,10 +1,6 @@
 // Scenario JSON -> Scenario, with every refusal naming file, JSON path and reason.
 #include "scenario.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -19,6 +15,7 @@
 #include <sstream>
 #include <utility>
 
+#include "bounded_read.hpp"
 #include "printable.hpp"
 #include "scenario_defaults.hpp"
 
@@ -674,44 +671,19 @@ Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& f
 
 namespace {
 
-struct Descriptor {
-  int fd;
-  ~Descriptor() { ::close(fd); }
-};
-
-// At most kMaxScenarioBytes of the file: its size is checked before reading when it has one,
-// and reading stops one byte past the limit otherwise (/dev/zero, a pipe).
-std::string read_bounded(const std::string& name) {
-  const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
-  if (fd < 0) {
-    throw ScenarioError(name, "(file)", std::string("cannot open the file for reading: ") + std::strerror(errno));
-  }
-  const Descriptor closer{fd};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) throw ScenarioError(name, "(file)", std::string("cannot stat the file: ") + std::strerror(errno));
-  if (S_ISDIR(st.st_mode)) throw ScenarioError(name, "(file)", "is a directory, not a scenario file");
-  const std::string limit = "the limit of " + std::to_string(kMaxScenarioBytes) + " bytes for a scenario";
-  if (S_ISREG(st.st_mode) && static_cast<std::uint64_t>(st.st_size) > kMaxScenarioBytes) {
-    throw ScenarioError(name, "(file)", "the file has " + std::to_string(st.st_size) + " bytes, more than " + limit);
-  }
-  std::string text;
-  std::array<char, 65536> buf{};
-  while (true) {
-    const ::ssize_t n = ::read(fd, buf.data(), buf.size());
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw ScenarioError(name, "(file)", std::string("read error: ") + std::strerror(errno));
-    if (n == 0) break;
-    text.append(buf.data(), static_cast<std::size_t>(n));
-    if (text.size() > kMaxScenarioBytes) throw ScenarioError(name, "(file)", "gave more than " + limit + " (stopped reading)");
-  }
-  return text;
+// At most kMaxScenarioBytes of the file (bounded_read.hpp).
+std::string read_scenario_text(const std::string& name) {
+  std::string why;
+  std::optional<std::string> text = read_bounded(name, kMaxScenarioBytes, "a scenario", why);
+  if (!text) throw ScenarioError(name, "(file)", why);
+  return std::move(*text);
 }
 
 }  // namespace
 
 Scenario read_scenario(const std::filesystem::path& path) {
   const std::string name = path.string();
-  return parse_scenario(read_bounded(name), name);
+  return parse_scenario(read_scenario_text(name), name);
 }
 
 std::string body_rate_field(const Scenario& s, int axis) {

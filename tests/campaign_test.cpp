@@ -98,7 +98,7 @@ TEST(CampaignFile, GivenEachMalformedCampaignThenItIsRefusedNamingFieldAndReason
       {"no base", [](json& j) { j.erase("base"); }, "base", "missing required field"},
       {"base not a scenario", [](json& j) { j["base"] = 5; }, "base", "expected a scenario file's path or a scenario object"},
       {"base file missing", [](json& j) { j["base"] = "scenarios/none.json"; }, "base",
-       "cannot open the base scenario \"scenarios/none.json\""},
+       "the base scenario \"scenarios/none.json\": cannot open the file for reading"},
       {"base inline and wrong", [](json& j) {
          j["base"] = json::parse(slurp(kSource / "scenarios/seeker_slew.json"));
          j["base"]["gyro"]["gimbal"]["rotor_transverse_inertia"] = -1.6e-5;
@@ -108,9 +108,10 @@ TEST(CampaignFile, GivenEachMalformedCampaignThenItIsRefusedNamingFieldAndReason
          j["base"]["body"]["rate_rads"] = 1;
        }, "base.body.rate_rads", "unknown key (did you mean \"rate_rad_s\"?)"},
       {"no runs", [](json& j) { j.erase("runs"); }, "runs", "missing required field"},
-      {"zero runs", [](json& j) { j["runs"] = 0; }, "runs", "must be an integer in [1, 100000000], got 0"},
-      {"negative runs", [](json& j) { j["runs"] = -5; }, "runs", "must be an integer in [1, 100000000], got -5"},
-      {"too many runs", [](json& j) { j["runs"] = 100000001; }, "runs", "must be an integer in [1, 100000000]"},
+      {"zero runs", [](json& j) { j["runs"] = 0; }, "runs", "must be an integer in [1, 1000000], got 0"},
+      {"negative runs", [](json& j) { j["runs"] = -5; }, "runs", "must be an integer in [1, 1000000], got -5"},
+      {"too many runs", [](json& j) { j["runs"] = 1000001; }, "runs", "must be an integer in [1, 1000000], got 1000001"},
+      {"runs 1e8", [](json& j) { j["runs"] = 100000000; }, "runs", "must be an integer in [1, 1000000], got 100000000"},
       {"fractional runs", [](json& j) { j["runs"] = 2.5; }, "runs", "expected an integer, got number 2.5"},
       {"runs as text", [](json& j) { j["runs"] = "10"; }, "runs", "expected an integer, got string \"10\""},
       {"negative seed", [](json& j) { j["seed"] = -1; }, "seed", "must be an integer in [0, 18446744073709551615]"},
@@ -183,6 +184,14 @@ TEST(CampaignFile, GivenEachMalformedCampaignThenItIsRefusedNamingFieldAndReason
          j["dispersions"][0] = {{"path", "run.precision"}, {"distribution", "choice"}, {"values", {"float", "double"}},
                                 {"weights", {1, 0}}};
        }, "dispersions[0].weights[1]", "must be > 0, got 0"},
+      {"choice weights whose total overflows", [](json& j) {
+         j["dispersions"][0] = {{"path", "run.precision"}, {"distribution", "choice"}, {"values", {"float", "double"}},
+                                {"weights", {1e308, 1e308}}};
+       }, "dispersions[0].weights", "the weights' total overflows a double at weights[1] (1e+308 after a sum of 1e+308)"},
+      {"choice weight lost in the total", [](json& j) {
+         j["dispersions"][0] = {{"path", "run.precision"}, {"distribution", "choice"}, {"values", {"float", "double"}},
+                                {"weights", {1e300, 1}}};
+       }, "dispersions[0].weights[1]", "too small to change the total 1e+300 of the weights before it"},
       {"scale of a name", [](json& j) {
          j["dispersions"][0] = {{"path", "run.precision"}, {"distribution", "choice"}, {"values", {"float"}}, {"apply", "scale"}};
        }, "dispersions[0].apply", "\"scale\" needs a number at run.precision"},
@@ -206,6 +215,10 @@ TEST(CampaignFile, GivenEachMalformedCampaignThenItIsRefusedNamingFieldAndReason
        "fault_injection.faults[0].start_s", "a run without a fault takes no \"start_s\""},
       {"fault weight 0", [](json& j) { j["fault_injection"]["faults"][0]["weight"] = 0; },
        "fault_injection.faults[0].weight", "must be an integer in [1, 1000000], got 0"},
+      {"fault weights above their total's bound", [](json& j) {
+         j["fault_injection"]["faults"][0]["weight"] = 1000000;
+         j["fault_injection"]["faults"][1]["weight"] = 1000000;
+       }, "fault_injection.faults", "the weights total 2000000, more than the limit of 1000000"},
       {"unknown select", [](json& j) { j["fault_injection"]["select"] = "shuffle"; }, "fault_injection.select",
        "expected \"cycle\" or \"random\""},
       {"spin failure with a negative decay", [](json& j) {
@@ -310,6 +323,70 @@ TEST(CampaignFile, GivenTheShippedCampaignsThenTheyAreAccepted) {
     SCOPED_TRACE(f);
     EXPECT_NO_THROW((void)read_campaign(kSource / f));
   }
+}
+
+// ---------------------------------------------------------------------------------------
+// Bounded inputs
+
+// The refusal `call` throws, or a failure if it throws none.
+template <class F>
+CampaignError refusal_of(F call) {
+  try {
+    call();
+  } catch (const CampaignError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted";
+  return CampaignError("", "", "");
+}
+
+TEST(CampaignBounds, GivenDevZeroAsTheCampaignFileThenRefusedNamingItAndTheBoundAfterReadingAtMostThat) {
+  const CampaignError e = refusal_of([] { (void)read_campaign("/dev/zero"); });
+  EXPECT_EQ(e.file(), "/dev/zero");
+  EXPECT_EQ(e.field(), "(file)");
+  EXPECT_EQ(e.reason(), "gave more than the limit of " + std::to_string(kMaxCampaignBytes) +
+                            " bytes for a campaign file (stopped reading)");
+}
+
+TEST(CampaignBounds, GivenACampaignFileLargerThanTheBoundThenRefusedFromItsSizeAlone) {
+  const fs::path tmp = fs::temp_directory_path() / ("campaign_test_big_" + std::to_string(::getpid()) + ".json");
+  {
+    std::ofstream out(tmp);
+    out << "{}";
+  }
+  fs::resize_file(tmp, kMaxCampaignBytes + 1);  // a sparse file: nothing to read needed
+  const CampaignError e = refusal_of([&] { (void)read_campaign(tmp); });
+  EXPECT_EQ(e.field(), "(file)");
+  EXPECT_EQ(e.reason(), "the file has " + std::to_string(kMaxCampaignBytes + 1) + " bytes, more than the limit of " +
+                            std::to_string(kMaxCampaignBytes) + " bytes for a campaign file");
+  fs::remove(tmp);
+}
+
+TEST(CampaignBounds, GivenDevZeroAsTheBaseScenarioThenRefusedNamingItAndTheScenarioBound) {
+  json j = valid_campaign();
+  j["base"] = "/dev/zero";
+  const CampaignError e = refusal_of([&] { (void)parse(j); });
+  EXPECT_EQ(e.field(), "base");
+  EXPECT_EQ(e.reason(), "the base scenario \"/dev/zero\": gave more than the limit of " +
+                            std::to_string(sil::kMaxScenarioBytes) + " bytes for a scenario (stopped reading)");
+}
+
+TEST(CampaignBounds, GivenTooManyRunsThenRefusedBeforeTheBaseScenarioIsRead) {
+  json j = valid_campaign();
+  j["runs"] = kMaxRuns + 1;
+  j["base"] = "/dev/zero";  // would be refused too, after reading a megabyte of it
+  const CampaignError e = refusal_of([&] { (void)parse(j); });
+  EXPECT_EQ(e.field(), "runs");
+  EXPECT_EQ(e.reason(), "must be an integer in [1, 1000000], got 1000001");
+}
+
+TEST(CampaignBounds, GivenACampaignWhoseResolvedTextExceedsTheBoundThenRefusedSoCampaignJsonReadsBack) {
+  json j = valid_campaign();
+  j["description"] = std::string(kMaxCampaignBytes, 'x');
+  const CampaignError e = refusal_of([&] { (void)parse(j); });
+  EXPECT_EQ(e.field(), "(root)");
+  EXPECT_NE(e.reason().find("more than the limit of " + std::to_string(kMaxCampaignBytes) + " bytes"),
+            std::string::npos) << e.reason();
 }
 
 // ---------------------------------------------------------------------------------------

@@ -5,12 +5,11 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
 #include <limits>
 #include <map>
-#include <sstream>
 
+#include "bounded_read.hpp"
 #include "campaign_error.hpp"
 #include "scenario.hpp"
 #include "sil_runner.hpp"
@@ -148,12 +147,10 @@ double phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
 json read_json_file(const std::filesystem::path& path, const std::string& refer_as, const std::string& field,
                     const std::string& campaign_file) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CampaignError(campaign_file, field, "cannot open the base scenario \"" + refer_as + "\" for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw CampaignError(campaign_file, field, "read error on \"" + refer_as + "\"");
-  return parse_strict_json(text.str(), path.string());
+  std::string why;
+  const std::optional<std::string> text = sil::read_bounded(path.string(), sil::kMaxScenarioBytes, "a scenario", why);
+  if (!text) throw CampaignError(campaign_file, field, "the base scenario \"" + refer_as + "\": " + why);
+  return parse_strict_json(*text, path.string());
 }
 
 bool overlaps(const std::vector<PathStep>& a, const std::vector<PathStep>& b) {
@@ -283,8 +280,21 @@ void parse_parameters(const Fields& d, Dispersion& out) {
           if (!(weights[i] > 0)) d.fail_at(at_index(d.path_of("weights"), i), "must be > 0, got " + w[i].dump());
         }
       }
+      // The running sums must stay finite and grow with every weight: a total that overflows
+      // (1e308 + 1e308) or a weight lost in the total's rounding would never be drawn.
       double total = 0;
-      for (double w : weights) out.cumulative_weights.push_back(total += w);
+      for (std::size_t i = 0; i < weights.size(); ++i) {
+        const double next = total + weights[i];
+        if (!std::isfinite(next)) {
+          d.fail("weights", "the weights' total overflows a double at weights[" + std::to_string(i) + "] (" +
+                                number_text(weights[i]) + " after a sum of " + number_text(total) + ")");
+        }
+        if (!(next > total)) {
+          d.fail_at(at_index(d.path_of("weights"), i), "too small to change the total " + number_text(total) +
+                                                           " of the weights before it: it would never be drawn");
+        }
+        out.cumulative_weights.push_back(total = next);
+      }
       break;
     }
   }
@@ -465,6 +475,12 @@ FaultInjection parse_fault_injection(const Fields& fi, double duration_s, std::s
   }
   if (any_fault && base_faults >= static_cast<std::size_t>(kMaxFaultEvents)) {
     fi.fail("faults", "the base scenario already has " + std::to_string(base_faults) + " faults, the most a run can have");
+  }
+  std::uint64_t weights = 0;
+  for (const FaultOption& o : out.options) weights += o.weight;  // <= 64 * 10^6: no overflow
+  if (weights > kMaxWeightTotal) {
+    fi.fail("faults", "the weights total " + std::to_string(weights) + ", more than the limit of " +
+                          std::to_string(kMaxWeightTotal));
   }
   double total = 0;
   for (std::size_t i = 0; i < out.options.size(); ++i) {
@@ -743,6 +759,8 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
                    {"description", "base", "set", "runs", "seed", "dispersions", "fault_injection", "metrics", "criteria",
                     "plots"});
   c.description = top.text("description", "");
+  // The run count first: nothing is read or allocated for a campaign of too many runs.
+  c.runs = top.count("runs", 1, kMaxRuns);
 
   // The base scenario: inline, or a file relative to the campaign's directory.
   const json& base = top.get("base");
@@ -773,7 +791,6 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   c.ticks = s.run.ticks;
   const double duration_s = static_cast<double>(c.ticks) * c.tick_s;
 
-  c.runs = top.count("runs", 1, kMaxRuns);
   c.seed = top.count("seed", 0, std::numeric_limits<std::uint64_t>::max());
   c.dispersions = parse_dispersions(top, c.base);
   if (top.has("fault_injection")) {
@@ -798,6 +815,11 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   if (top.has("plots")) c.scatter = parse_plots(Fields(c.file, top.get("plots"), "plots", {"scatter"}), c);
 
   c.resolved_text = resolved.dump(2) + "\n";
+  if (c.resolved_text.size() > kMaxCampaignBytes) {
+    top.fail_at("", "with its base scenario inline the campaign has " + std::to_string(c.resolved_text.size()) +
+                        " bytes, more than the limit of " + std::to_string(kMaxCampaignBytes) +
+                        " bytes for a campaign file (campaign.json must be readable by merge)");
+  }
   std::array<char, 17> hex{};
   const std::to_chars_result r = std::to_chars(hex.data(), hex.data() + 16, fnv1a64(c.resolved_text), 16);
   c.fingerprint = "fnv1a64:" + std::string(16 - static_cast<std::size_t>(r.ptr - hex.data()), '0') +
@@ -807,12 +829,10 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
 
 Campaign read_campaign(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CampaignError(name, "(file)", "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw CampaignError(name, "(file)", "read error");
-  return parse_campaign(text.str(), name, path.parent_path());
+  std::string why;
+  const std::optional<std::string> text = sil::read_bounded(name, kMaxCampaignBytes, "a campaign file", why);
+  if (!text) throw CampaignError(name, "(file)", why);
+  return parse_campaign(*text, name, path.parent_path());
 }
 
 }  // namespace gyro::campaign

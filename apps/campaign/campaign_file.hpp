@@ -118,15 +118,29 @@ struct Campaign {
   std::string fingerprint;          // "fnv1a64:<16 hex digits>" of resolved_text
 };
 
-// Largest run count accepted (a sanity bound: the per-run table is held in memory).
-inline constexpr std::uint64_t kMaxRuns = 100'000'000;
+// Largest run count accepted, checked before anything is allocated for the runs: the per-run
+// table is held in memory, about 2 kB a run (223 MB for 100,000 runs, docs/campaigns.md), so
+// 10^6 runs need about 2 GB. Larger campaigns are several campaigns with other seeds.
+inline constexpr std::uint64_t kMaxRuns = 1'000'000;
+
+// Largest campaign file read (4 MiB, checked before reading; the shipped ones are about
+// 6 KB). It bounds campaign.json in an output directory too: a campaign whose resolved text
+// (its base scenario inline) is longer is refused, so that every campaign.json written can
+// be read back by merge and run.
+inline constexpr std::uint64_t kMaxCampaignBytes = 4u << 20;
+
+// Largest total of the fault injection's weights (the "cycle" pattern holds one entry per
+// unit of weight).
+inline constexpr std::uint64_t kMaxWeightTotal = 1'000'000;
 
 // Parses and checks the campaign; a base scenario given as a path is read relative to
 // `base_dir`. Throws CampaignError.
 [[nodiscard]] Campaign parse_campaign(std::string_view json_text, const std::string& file,
                                       const std::filesystem::path& base_dir);
 
-// Reads the file and parses it (the base path relative to the file's directory).
+// Reads the file (at most kMaxCampaignBytes; a base scenario file at most
+// sil::kMaxScenarioBytes, both checked before reading) and parses it (the base path relative
+// to the file's directory).
 [[nodiscard]] Campaign read_campaign(const std::filesystem::path& path);
 
 // The per-run metric columns the metric set records, in order, with their kind of value.

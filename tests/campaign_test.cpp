@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +24,7 @@
 #include "campaign_run.hpp"
 #include "json_path.hpp"
 #include "run_plan.hpp"
+#include "run_pool.hpp"
 #include "run_table.hpp"
 #include "sil_runner.hpp"
 #include "statistics.hpp"
@@ -387,6 +389,15 @@ TEST(CampaignBounds, GivenACampaignWhoseResolvedTextExceedsTheBoundThenRefusedSo
   EXPECT_EQ(e.field(), "(root)");
   EXPECT_NE(e.reason().find("more than the limit of " + std::to_string(kMaxCampaignBytes) + " bytes"),
             std::string::npos) << e.reason();
+}
+
+TEST(CampaignBounds, GivenMoreThreadsThanTheBoundThenThePoolRefusesAndGivenMoreThanRunsThenItRunsThem) {
+  const Campaign c = parse(valid_campaign());
+  EXPECT_THROW(RunPool(c, 0, 2, kMaxThreads + 1), std::invalid_argument);
+  RunPool pool(c, 0, 2, kMaxThreads);  // two workers, one a run
+  std::size_t rows = 0;
+  while (!pool.done()) rows += pool.take(std::chrono::milliseconds(100)).size();
+  EXPECT_EQ(rows, 2u);
 }
 
 // ---------------------------------------------------------------------------------------

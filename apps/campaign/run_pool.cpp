@@ -1,5 +1,10 @@
 #include "run_pool.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
 #include "campaign_run.hpp"
 #include "run_table.hpp"
 
@@ -7,8 +12,18 @@ namespace gyro::campaign {
 
 RunPool::RunPool(const Campaign& c, std::uint64_t first, std::uint64_t end, unsigned threads)
     : campaign_(c), end_(end), next_(first), remaining_(end > first ? end - first : 0) {
-  const unsigned n = threads == 0 ? 1u : threads;
-  for (unsigned i = 0; i < n; ++i) workers_.emplace_back([this] { work(); });
+  if (threads > kMaxThreads) {
+    throw std::invalid_argument("threads " + std::to_string(threads) + ": at most " + std::to_string(kMaxThreads));
+  }
+  const std::uint64_t n = std::max<std::uint64_t>(1, std::min<std::uint64_t>(threads, remaining_));
+  try {
+    for (std::uint64_t i = 0; i < n; ++i) workers_.emplace_back([this] { work(); });
+  } catch (const std::system_error& e) {
+    next_.store(end_);
+    for (std::thread& t : workers_) t.join();
+    throw std::runtime_error("cannot start worker thread " + std::to_string(workers_.size() + 1) + " of " +
+                             std::to_string(n) + ": " + e.what());
+  }
 }
 
 RunPool::~RunPool() {

@@ -18,8 +18,16 @@
 
 namespace gyro::campaign {
 
+// Most worker threads a process starts (gyro_campaign -j): a run keeps one core busy, so more
+// threads than cores only share them; the bound keeps a mistyped count from asking the system
+// for more threads than it gives (a request it refuses would end the process).
+inline constexpr unsigned kMaxThreads = 1024;
+
 class RunPool {
  public:
+  // Starts min(threads, end - first) workers (at least one). Throws std::invalid_argument for
+  // more than kMaxThreads, std::runtime_error when the system refuses a thread (the workers
+  // started are stopped and joined first).
   RunPool(const Campaign& c, std::uint64_t first, std::uint64_t end, unsigned threads);
   ~RunPool();
   RunPool(const RunPool&) = delete;

@@ -8,7 +8,11 @@
 # rerun: --run K reproduces run K's row exactly, and its scenario run by gyro_sil gives its
 #   time history byte for byte.
 # refusals: bad command lines, outputs that would overwrite inputs, shards that do not make
-#   one campaign.
+#   one campaign; and every host input bounded, every user file safe (docs/campaigns.md):
+#   inputs that never end, too many runs or threads, option values that are empty, negative
+#   or not numbers, weights whose sum overflows, symbolic links and read-only files in the
+#   output directory, a directory in use (tests/campaign_lock_signals.sh: the lock under
+#   SIGINT, SIGTERM and SIGKILL), control characters in messages.
 cmake_minimum_required(VERSION 3.25)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -22,9 +26,10 @@ function(run_ok)
   endif()
 endfunction()
 
-# Runs the command, expects exit status `status` and `text` in its standard error.
+# Runs the command, expects exit status `status` and `text` in its standard error, within
+# 60 s (a refusal is prompt).
 function(run_refused status text)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
   if(NOT rc EQUAL status)
     message(FATAL_ERROR "expected exit status ${status}, got ${rc} from:\n${ARGN}\n${err}")
   endif()
@@ -211,6 +216,111 @@ elseif(MODE STREQUAL "refusals")
   file(WRITE "${WORK}/s2/campaign.json" "${other}")
   run_refused(2 "not the campaign of" "${EXE}" merge "${WORK}/s1" "${WORK}/s2" -o "${WORK}/m")
   run_refused(2 "cannot open" "${EXE}" merge "${WORK}/s1" "${WORK}/none" -o "${WORK}/m")
+
+  # ---- Every host input bounded.
+  # Inputs that never end: the campaign file, its base scenario, a shard's manifest.
+  run_refused(2 "/dev/zero: (file): gave more than the limit of 4194304 bytes for a campaign file (stopped reading)"
+              "${EXE}" run /dev/zero -o "${WORK}/b")
+  set(scenario "${SOURCE}/scenarios/seeker_slew.json")
+  set(tiny "\"base\": \"${scenario}\", \"seed\": 1")
+  file(WRITE "${WORK}/zero_base.json" "{ \"base\": \"/dev/zero\", \"runs\": 2, \"seed\": 1 }")
+  run_refused(2 "zero_base.json: base: the base scenario \"/dev/zero\": gave more than the limit of 1048576 bytes for a scenario"
+              "${EXE}" run "${WORK}/zero_base.json" -o "${WORK}/b")
+  # Too many runs: refused before the base is read (here /dev/zero) or anything allocated.
+  file(WRITE "${WORK}/many.json" "{ \"base\": \"/dev/zero\", \"runs\": 100000000, \"seed\": 1 }")
+  run_refused(2 "many.json: runs: must be an integer in [1, 1000000], got 100000000"
+              "${EXE}" run "${WORK}/many.json" -o "${WORK}/b")
+  foreach(i 1 2)
+    run_ok("${EXE}" run "${campaign}" -o "${WORK}/z${i}" --shard ${i}/2 --no-plots -q)
+  endforeach()
+  file(REMOVE "${WORK}/z2/manifest.json")
+  file(CREATE_LINK /dev/zero "${WORK}/z2/manifest.json" SYMBOLIC)
+  run_refused(2 "z2/manifest.json: gave more than the limit of 65536 bytes for a manifest (stopped reading)"
+              "${EXE}" merge "${WORK}/z1" "${WORK}/z2" -o "${WORK}/zm")
+  # Threads: a documented bound, refused with a message (it aborted the process).
+  run_refused(2 "-j 100000: more than the limit of 1024" "${EXE}" run "${campaign}" -o "${WORK}/b" -j 100000)
+  # Option values that are empty, negative or not numbers: refused, never "no limit" or unset.
+  run_refused(2 "-j -1: expected a whole number from 0 to 1024" "${EXE}" run "${campaign}" -o "${WORK}/b" -j -1)
+  run_refused(2 "-j nan: expected a whole number" "${EXE}" run "${campaign}" -o "${WORK}/b" -j nan)
+  run_refused(2 "-j inf: expected a whole number" "${EXE}" run "${campaign}" -o "${WORK}/b" -j inf)
+  run_refused(2 "--run -1: expected a whole number from 0 to 999999" "${EXE}" run "${campaign}" -o "${WORK}/b" --run -1)
+  # An empty value (given directly: a function's ARGN drops empty arguments).
+  foreach(option -j --run --shard -o merge)
+    if(option STREQUAL "-o")
+      execute_process(COMMAND "${EXE}" run "${campaign}" -o "" RESULT_VARIABLE rc ERROR_VARIABLE err)
+      set(text "-o is empty")
+    elseif(option STREQUAL "merge")
+      execute_process(COMMAND "${EXE}" merge "${WORK}/z1" "" -o "${WORK}/b" RESULT_VARIABLE rc ERROR_VARIABLE err)
+      set(text "merge: a directory is named by an empty string")
+    else()
+      execute_process(COMMAND "${EXE}" run "${campaign}" -o "${WORK}/b" ${option} "" RESULT_VARIABLE rc ERROR_VARIABLE err)
+      set(text "${option} is empty")
+    endif()
+    string(FIND "${err}" "${text}" at)
+    if(NOT rc EQUAL 2 OR at EQUAL -1)
+      message(FATAL_ERROR "an empty ${option}: exit status ${rc}, expected 2 and \"${text}\":\n${err}")
+    endif()
+  endforeach()
+  if(EXISTS "${WORK}/b")
+    message(FATAL_ERROR "a refused command line created the output directory")
+  endif()
+  # Choice weights whose sum overflows: refused up front, naming the field.
+  file(WRITE "${WORK}/weights.json" "{ ${tiny}, \"runs\": 2, \"dispersions\": [ { \"path\": \"run.precision\",
+    \"distribution\": \"choice\", \"values\": [\"float\", \"double\"], \"weights\": [1e308, 1e308] } ] }")
+  run_refused(2 "weights.json: dispersions[0].weights: the weights' total overflows a double at weights[1]"
+              "${EXE}" run "${WORK}/weights.json" -o "${WORK}/b")
+
+  # ---- Every user file safe.
+  run_ok("${EXE}" run "${campaign}" -o "${WORK}/mine" -q)
+  # A symbolic link in place of plots/: refused before anything runs; the linked file untouched.
+  file(WRITE "${WORK}/users_plots/histograms.png" "the user's picture\n")
+  file(REMOVE_RECURSE "${WORK}/mine/plots")
+  file(CREATE_LINK "${WORK}/users_plots" "${WORK}/mine/plots" SYMBOLIC)
+  run_refused(2 "mine/plots\" is a symbolic link: refused, not followed" "${EXE}" run "${campaign}" -o "${WORK}/mine" -q)
+  file(READ "${WORK}/users_plots/histograms.png" picture)
+  file(GLOB linked RELATIVE "${WORK}/users_plots" "${WORK}/users_plots/*")
+  if(NOT picture STREQUAL "the user's picture\n" OR NOT linked STREQUAL "histograms.png")
+    message(FATAL_ERROR "the linked directory was written: ${linked}")
+  endif()
+  file(REMOVE "${WORK}/mine/plots")
+  # A read-only output: not replaced.
+  file(READ "${WORK}/mine/summary.md" summary_before)
+  file(CHMOD "${WORK}/mine/summary.md" PERMISSIONS OWNER_READ GROUP_READ WORLD_READ)
+  run_refused(2 "mine/summary.md\" is read-only: not replaced" "${EXE}" run "${campaign}" -o "${WORK}/mine" -q)
+  file(READ "${WORK}/mine/summary.md" summary_after)
+  if(NOT summary_after STREQUAL summary_before)
+    message(FATAL_ERROR "the read-only summary.md was replaced")
+  endif()
+  file(CHMOD "${WORK}/mine/summary.md" PERMISSIONS OWNER_READ OWNER_WRITE GROUP_READ WORLD_READ)
+  run_ok("${EXE}" run "${campaign}" -o "${WORK}/mine" -q --no-plots)
+  if(EXISTS "${WORK}/mine/.gyro_campaign.lock")
+    message(FATAL_ERROR "the lock file outlived the run")
+  endif()
+  # A directory in use by another run: refused; the lock released on SIGINT, SIGTERM, SIGKILL.
+  file(READ "${campaign}" long)
+  string(REPLACE "../../../scenarios/" "${SOURCE}/scenarios/" long "${long}")
+  string(REPLACE "\"runs\": 30," "\"runs\": 1000000," long "${long}")
+  file(WRITE "${WORK}/long.json" "${long}")
+  file(MAKE_DIRECTORY "${WORK}/lock")
+  execute_process(COMMAND sh "${SOURCE}/tests/campaign_lock_signals.sh" "${EXE}" "${WORK}/long.json" "${WORK}/lock"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(NOT rc EQUAL 0 OR NOT out STREQUAL "ok\n")
+    message(FATAL_ERROR "campaign_lock_signals.sh: exit status ${rc}:\n${out}\n${err}")
+  endif()
+
+  # ---- Control characters in messages: escaped, never sent to the terminal raw.
+  string(ASCII 27 esc)
+  # (JSON escapes the control character; the key read holds it.)
+  file(WRITE "${WORK}/control.json" "{ ${tiny}, \"runs\": 2, \"\\u001b[2Jruns\": 1 }")
+  run_refused(2 "control.json: \\x1b[2Jruns: unknown key" "${EXE}" run "${WORK}/control.json" -o "${WORK}/b")
+  foreach(args IN ITEMS "run;${WORK}/control.json;-o;${WORK}/b" "run;${campaign};-o;${WORK}/b;--shard;1${esc}]0;x/2"
+                        "run;${campaign};-o;${WORK}/b;-j;2${esc}[31m" "run;${campaign};-o;${WORK}/b;--bogus${esc}[31m")
+    execute_process(COMMAND "${EXE}" ${args} RESULT_VARIABLE rc ERROR_VARIABLE err)
+    string(FIND "${err}" "${esc}" raw)
+    if(NOT rc EQUAL 2 OR NOT raw EQUAL -1 OR NOT err MATCHES "x1b")
+      message(FATAL_ERROR "exit status ${rc}, a raw escape in the message of ${args}:\n${err}")
+    endif()
+  endforeach()
 
 else()
   message(FATAL_ERROR "MODE must be parallel, rerun or refusals")

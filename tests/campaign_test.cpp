@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -23,6 +24,8 @@
 #include "campaign_file.hpp"
 #include "campaign_run.hpp"
 #include "json_path.hpp"
+#include "option_values.hpp"
+#include "output_dir.hpp"
 #include "run_plan.hpp"
 #include "run_pool.hpp"
 #include "run_table.hpp"
@@ -391,6 +394,35 @@ TEST(CampaignBounds, GivenACampaignWhoseResolvedTextExceedsTheBoundThenRefusedSo
             std::string::npos) << e.reason();
 }
 
+TEST(CampaignBounds, GivenOptionCountsThenOnlyDecimalDigitsWithinTheBoundAreAccepted) {
+  std::string why;
+  EXPECT_EQ(parse_count("-j", "0", 1024, why), 0u);
+  EXPECT_EQ(parse_count("-j", "1024", 1024, why), 1024u);
+  const struct {
+    const char* text;
+    const char* why;
+  } refused[] = {
+      {"", "-j is empty: expected a whole number from 0 to 1024"},
+      {"1025", "-j 1025: more than the limit of 1024"},
+      {"100000", "-j 100000: more than the limit of 1024"},
+      {"99999999999999999999999", "-j 99999999999999999999999: more than the limit of 1024"},
+      {"-1", "-j -1: expected a whole number from 0 to 1024"},
+      {"+2", "-j +2: expected a whole number from 0 to 1024"},
+      {"2.0", "-j 2.0: expected a whole number from 0 to 1024"},
+      {"1e3", "-j 1e3: expected a whole number from 0 to 1024"},
+      {"nan", "-j nan: expected a whole number from 0 to 1024"},
+      {"inf", "-j inf: expected a whole number from 0 to 1024"},
+      {" 2", "-j  2: expected a whole number from 0 to 1024"},
+      {"2\x1b[2J", "-j 2\\x1b[2J: expected a whole number from 0 to 1024"},
+  };
+  for (const auto& r : refused) {
+    SCOPED_TRACE(r.text);
+    why.clear();
+    EXPECT_FALSE(parse_count("-j", r.text, 1024, why).has_value());
+    EXPECT_EQ(why, r.why);
+  }
+}
+
 TEST(CampaignBounds, GivenMoreThreadsThanTheBoundThenThePoolRefusesAndGivenMoreThanRunsThenItRunsThem) {
   const Campaign c = parse(valid_campaign());
   EXPECT_THROW(RunPool(c, 0, 2, kMaxThreads + 1), std::invalid_argument);
@@ -398,6 +430,116 @@ TEST(CampaignBounds, GivenMoreThreadsThanTheBoundThenThePoolRefusesAndGivenMoreT
   std::size_t rows = 0;
   while (!pool.done()) rows += pool.take(std::chrono::milliseconds(100)).size();
   EXPECT_EQ(rows, 2u);
+}
+
+// ---------------------------------------------------------------------------------------
+// The output directory: the user's files are safe
+
+class CampaignOutputs : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("campaign_test_out_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::permissions(root_ / "out" / "summary.md", fs::perms::owner_write, fs::perm_options::add, ec);
+    fs::remove_all(root_);
+  }
+  fs::path root_;
+};
+
+const std::vector<std::string> kNames = {"runs.csv", "summary.md", "plots/histograms.png", "plots/histograms.dat"};
+
+// The message of the OutputError `call` throws ("" if none).
+template <class F>
+std::string output_refusal(F call) {
+  try {
+    call();
+  } catch (const OutputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_F(CampaignOutputs, GivenASymbolicLinkInPlaceOfASubdirectoryThenRefusedAndTheLinkedFileUntouched) {
+  {
+    const OutputDir out(root_ / "out", {});
+    out.claim(kNames);
+    out.write("plots/histograms.png", "first");
+  }
+  fs::create_directories(root_ / "users");
+  std::ofstream(root_ / "users" / "histograms.png") << "the user's picture";
+  fs::remove_all(root_ / "out" / "plots");
+  fs::create_directory_symlink(root_ / "users", root_ / "out" / "plots");
+  const OutputDir out(root_ / "out", {});
+  const std::string why = output_refusal([&] { out.claim(kNames); });
+  EXPECT_NE(why.find("/out/plots\" is a symbolic link: refused, not followed"), std::string::npos) << why;
+  EXPECT_NE(output_refusal([&] { out.write("plots/histograms.png", "second"); }), "");
+  EXPECT_EQ(slurp(root_ / "users" / "histograms.png"), "the user's picture");
+  EXPECT_EQ(std::distance(fs::directory_iterator(root_ / "users"), fs::directory_iterator{}), 1);
+}
+
+TEST_F(CampaignOutputs, GivenASymbolicLinkInPlaceOfAnOutputThenRefusedAndTheLinkKept) {
+  std::ofstream(root_ / "users.csv") << "the user's table";
+  fs::create_directories(root_ / "out");
+  {
+    const OutputDir out(root_ / "out", {});
+    out.claim(kNames);
+  }
+  fs::create_symlink(root_ / "users.csv", root_ / "out" / "runs.csv");
+  const OutputDir out(root_ / "out", {});
+  const std::string why = output_refusal([&] { out.write("runs.csv", "rows"); });
+  EXPECT_NE(why.find("/out/runs.csv\" is a symbolic link: refused, not followed"), std::string::npos) << why;
+  EXPECT_TRUE(fs::is_symlink(root_ / "out" / "runs.csv"));
+  EXPECT_EQ(slurp(root_ / "users.csv"), "the user's table");
+}
+
+TEST_F(CampaignOutputs, GivenAReadOnlyOutputThenItIsNotReplaced) {
+  {
+    const OutputDir out(root_ / "out", {});
+    out.claim(kNames);
+    out.write("summary.md", "kept");
+  }
+  fs::permissions(root_ / "out" / "summary.md", fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                  fs::perm_options::remove);
+  const OutputDir out(root_ / "out", {});
+  const std::string why = output_refusal([&] { out.claim(kNames); });
+  EXPECT_NE(why.find("/out/summary.md\" is read-only: not replaced"), std::string::npos) << why;
+  EXPECT_NE(output_refusal([&] { out.write("summary.md", "replaced"); }), "");
+  EXPECT_EQ(slurp(root_ / "out" / "summary.md"), "kept");
+}
+
+TEST_F(CampaignOutputs, GivenADirectoryInUseThenASecondIsRefusedAndOnceReleasedItIsFree) {
+  std::optional<OutputDir> first(std::in_place, root_ / "out", std::vector<fs::path>{});
+  EXPECT_TRUE(fs::exists(root_ / "out" / kLockFile));
+  const std::string why = output_refusal([&] { const OutputDir second(root_ / "out", {}); });
+  EXPECT_NE(why.find("is in use by another gyro_campaign (process " + std::to_string(::getpid()) + ")"),
+            std::string::npos) << why;
+  first.reset();
+  EXPECT_FALSE(fs::exists(root_ / "out" / kLockFile));
+  EXPECT_EQ(output_refusal([&] { const OutputDir again(root_ / "out", {}); }), "");
+}
+
+TEST_F(CampaignOutputs, GivenAnOutputWrittenThenItReplacesTheFileAndLeavesNoTemporary) {
+  const OutputDir out(root_ / "out", {});
+  out.claim(kNames);
+  out.write("plots/histograms.dat", "one");
+  out.write("plots/histograms.dat", [](std::ostream& f) { f << "two " << 2; });
+  EXPECT_EQ(slurp(root_ / "out" / "plots" / "histograms.dat"), "two 2");
+  for (const auto& e : fs::recursive_directory_iterator(root_ / "out")) {
+    EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+  }
+}
+
+TEST(CampaignBounds, GivenAMergeInputThatNeverEndsThenReadingStopsAtItsBound) {
+  try {
+    (void)read_file("/dev/zero", 65536, "a manifest");
+    ADD_FAILURE() << "accepted";
+  } catch (const OutputError& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/zero: gave more than the limit of 65536 bytes for a manifest (stopped reading)");
+  }
 }
 
 // ---------------------------------------------------------------------------------------

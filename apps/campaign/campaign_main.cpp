@@ -25,11 +25,14 @@
 #include "campaign_run.hpp"
 #include "cluster.hpp"
 #include "csv_writer.hpp"
+#include "option_values.hpp"
 #include "output_dir.hpp"
 #include "plot.hpp"
+#include "printable.hpp"
 #include "progress_line.hpp"
 #include "run_pool.hpp"
 #include "run_table.hpp"
+#include "signal_cleanup.hpp"
 #include "sil_runner.hpp"
 #include "strict_json.hpp"
 #include "summary.hpp"
@@ -48,16 +51,27 @@ constexpr int kExitPlotFailed = 3;
 constexpr std::size_t kBatchBytes = 64 * 1024;
 constexpr std::chrono::milliseconds kBatchAge{250};
 
+// The largest manifest.json merge reads (the ones written are about 160 bytes).
+constexpr std::uint64_t kMaxManifestBytes = 64 * 1024;
+
 struct Options {
   std::string campaign;
   std::vector<std::string> dirs;  // merge
   std::string out;
+  std::string threads_text{"1"};
   unsigned threads{1};
   std::string shard;
+  std::string run_text;
   std::optional<std::uint64_t> run;
   bool no_plots{false};
   bool quiet{false};
 };
+
+// A message on standard error, its user-given text (paths, JSON keys and values) escaped:
+// a control character would be interpreted by the terminal (printable.hpp).
+void say(const std::string& message) {
+  std::fprintf(stderr, "gyro_campaign: %s\n", gyro::sil::printable(message).c_str());
+}
 
 struct Shard {
   std::uint64_t index{0}, count{1};  // 0-based index of `count`
@@ -132,14 +146,13 @@ int write_summary(const Campaign& c, const OutputDir& out, const RunTable& t, co
   out.write("summary.md", make_summary(c, t, pngs));
   int status = 0;
   for (const PlotJob& j : jobs) {
-    const fs::path tmp = out.temporary_for(j.png);
+    gyro::sil::TempFile tmp = out.temporary_for(j.png);
+    tmp.close();  // gnuplot writes it
     try {
-      gyro::sil::run_gnuplot(plot_script(j, (out.path() / j.data).string(), tmp.string()), tmp);
+      gyro::sil::run_gnuplot(plot_script(j, (out.path() / j.data).string(), tmp.path().string()), tmp.path());
       out.publish(tmp, j.png);
     } catch (const gyro::sil::PlotError& e) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      std::fprintf(stderr, "gyro_campaign: plot %s failed: %s\n", j.png.c_str(), e.what());
+      say("plot " + j.png + " failed: " + e.what());  // the temporary is removed with `tmp`
       status = kExitPlotFailed;
     }
   }
@@ -151,11 +164,9 @@ int write_summary(const Campaign& c, const OutputDir& out, const RunTable& t, co
       refused += t.cell(i, st) == "refused" ? 1u : 0u;
       errors += t.cell(i, st) == "error" ? 1u : 0u;
     }
-    std::fprintf(stderr, "gyro_campaign: %zu runs: %llu passed, %llu failed, %llu refused, %llu in error; wrote %s\n",
-                 t.size(), static_cast<unsigned long long>(passed),
-                 static_cast<unsigned long long>(t.size() - passed - refused - errors),
-                 static_cast<unsigned long long>(refused), static_cast<unsigned long long>(errors),
-                 (out.path() / "summary.md").c_str());
+    say(std::to_string(t.size()) + " runs: " + std::to_string(passed) + " passed, " +
+        std::to_string(t.size() - passed - refused - errors) + " failed, " + std::to_string(refused) + " refused, " +
+        std::to_string(errors) + " in error; wrote " + (out.path() / "summary.md").string());
   }
   return status;
 }
@@ -172,10 +183,8 @@ int write_outputs(const Campaign& c, const OutputDir& out, const Shard& s, std::
   out.write("manifest.json", manifest(c, s));
   if (!s.complete()) {
     if (!o.quiet) {
-      std::fprintf(stderr, "gyro_campaign: shard %s (runs %llu to %llu) written to %s; join the shards with "
-                           "gyro_campaign merge\n",
-                   s.text().c_str(), static_cast<unsigned long long>(s.first),
-                   static_cast<unsigned long long>(s.end - 1), out.path().c_str());
+      say("shard " + s.text() + " (runs " + std::to_string(s.first) + " to " + std::to_string(s.end - 1) +
+          ") written to " + out.path().string() + "; join the shards with gyro_campaign merge");
     }
     return 0;
   }
@@ -256,13 +265,13 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
       out->claim(kOutputs);
       text = c.resolved_text;
     } catch (const CampaignError& e) {
-      std::fprintf(stderr, "gyro_campaign: bad campaign: %s\n", e.what());
+      say(std::string("bad campaign: ") + e.what());
       status = kExitBadInput;
     } catch (const OutputError& e) {
-      std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+      say(e.what());
       status = kExitBadInput;
     } catch (const std::invalid_argument& e) {
-      std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+      say(e.what());
       status = kExitBadInput;
     }
   }
@@ -272,7 +281,7 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
     try {
       c = parse_campaign(text, o.campaign, fs::path(o.campaign).parent_path());
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "gyro_campaign: rank %d: %s\n", cluster.rank(), e.what());
+      say("rank " + std::to_string(cluster.rank()) + ": " + e.what());
       cluster.abort(kExitRunFailed);
     }
   }
@@ -288,10 +297,10 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
       stream_rows(cluster, pool);
     }
   } catch (const OutputError& e) {
-    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    say(e.what());
     status = kExitRunFailed;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "gyro_campaign: rank %d failed: %s\n", cluster.rank(), e.what());
+    say("rank " + std::to_string(cluster.rank()) + " failed: " + e.what());
     if (cluster.size() > 1) cluster.abort(kExitRunFailed);
     return kExitRunFailed;
   }
@@ -326,7 +335,7 @@ gyro::sil::PlotRequest run_plot(const fs::path& csv, const fs::path& png, std::u
 // --run K: one run alone, with its scenario, time history, plot and table row.
 int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
   if (cluster.size() > 1) {
-    if (cluster.root()) std::fprintf(stderr, "gyro_campaign: --run takes one process: run it without mpirun\n");
+    if (cluster.root()) say("--run takes one process: run it without mpirun");
     return kExitBadInput;
   }
   const std::uint64_t k = *o.run;
@@ -336,58 +345,52 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
   try {
     c = read_campaign(o.campaign);
     if (k >= c.runs) {
-      std::fprintf(stderr, "gyro_campaign: --run %llu: the campaign has runs 0 to %llu\n",
-                   static_cast<unsigned long long>(k), static_cast<unsigned long long>(c.runs - 1));
+      say("--run " + std::to_string(k) + ": the campaign has runs 0 to " + std::to_string(c.runs - 1));
       return kExitBadInput;
     }
     out.emplace(o.out, inputs_of(o.campaign, c));
     out->claim({stem + ".json", stem + ".csv", stem + "-metrics.csv", stem + ".png"});
   } catch (const CampaignError& e) {
-    std::fprintf(stderr, "gyro_campaign: bad campaign: %s\n", e.what());
+    say(std::string("bad campaign: ") + e.what());
     return kExitBadInput;
   } catch (const OutputError& e) {
-    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    say(e.what());
     return kExitBadInput;
   }
   int status = 0;
   try {
     out->write(stem + ".json", plan_run(c, k).scenario.dump(2) + "\n");
-    const fs::path tmp = out->temporary_for(stem + ".csv");
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (f == nullptr) throw OutputError("cannot write " + tmp.string());
-    gyro::sil::CsvWriter csv(f);
+    gyro::sil::TempFile tmp = out->temporary_for(stem + ".csv");
+    gyro::sil::CsvWriter csv(tmp.stream());
     gyro::sil::CsvObserver history(csv);
     const RunResult r = execute_run(c, k, &history);
-    const bool written = std::fclose(f) == 0 && csv.ok();
-    const bool has_history = r.status != RunStatus::kRefused && written;
-    if (has_history) {
-      out->publish(tmp, stem + ".csv");
-    } else {
-      std::error_code ec;
-      fs::remove(tmp, ec);
+    bool written = csv.ok();
+    try {
+      tmp.close();
+    } catch (const gyro::sil::OutputError&) {
+      written = false;
     }
+    const bool has_history = r.status != RunStatus::kRefused && written;
+    if (has_history) out->publish(tmp, stem + ".csv");  // else removed with `tmp`
     out->write(stem + "-metrics.csv", csv_line(table_header(c)) + "\n" + format_row(c, r));
     if (has_history && !o.no_plots) {
-      const fs::path png_tmp = out->temporary_for(stem + ".png");
+      gyro::sil::TempFile png_tmp = out->temporary_for(stem + ".png");
+      png_tmp.close();  // gnuplot writes it
       try {
-        gyro::sil::plot_csv(run_plot(out->path() / (stem + ".csv"), png_tmp, k, r));
+        gyro::sil::plot_csv(run_plot(out->path() / (stem + ".csv"), png_tmp.path(), k, r));
         out->publish(png_tmp, stem + ".png");
       } catch (const gyro::sil::PlotError& e) {
-        std::error_code ec;
-        fs::remove(png_tmp, ec);
-        std::fprintf(stderr, "gyro_campaign: plot failed: %s\n", e.what());
+        say(std::string("plot failed: ") + e.what());  // the temporary is removed with `png_tmp`
         status = kExitPlotFailed;
       }
     }
     if (!o.quiet) {
-      std::fprintf(stderr, "gyro_campaign: run %llu (seed %llu): %s%s%s; wrote %s/%s.*\n",
-                   static_cast<unsigned long long>(k), static_cast<unsigned long long>(r.plan.seed),
-                   to_string(r.status), r.reason.empty() ? "" : ": ", r.reason.c_str(), out->path().c_str(),
-                   stem.c_str());
+      say("run " + std::to_string(k) + " (seed " + std::to_string(r.plan.seed) + "): " + to_string(r.status) +
+          (r.reason.empty() ? "" : ": ") + r.reason + "; wrote " + out->path().string() + "/" + stem + ".*");
     }
     if (!written) throw OutputError("writing the time history failed");
   } catch (const OutputError& e) {
-    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    say(e.what());
     return kExitRunFailed;
   }
   return status;
@@ -401,7 +404,7 @@ int merge(const Options& o) {
       const fs::path dir(d);
       dirs.push_back(dir);
       for (const char* f : {"campaign.json", "manifest.json", "runs.csv"}) inputs.push_back(dir / f);
-      const std::string t = read_file(dir / "campaign.json");
+      const std::string t = read_file(dir / "campaign.json", kMaxCampaignBytes, "a campaign file");
       if (text.empty()) {
         text = t;
       } else if (t != text) {
@@ -415,12 +418,12 @@ int merge(const Options& o) {
     for (std::size_t d = 0; d < dirs.size(); ++d) {
       const fs::path& dir = dirs[d];
       const fs::path manifest_path = dir / "manifest.json";
-      const json m = parse_strict_json(read_file(manifest_path), manifest_path.string());
+      const json m = parse_strict_json(read_file(manifest_path, kMaxManifestBytes, "a manifest"), manifest_path.string());
       if (!m.is_object() || !m.contains("campaign") || m["campaign"] != c.fingerprint) {
         throw CampaignError(manifest_path.string(), "campaign", "not " + c.fingerprint);
       }
       const fs::path csv_path = dir / "runs.csv";
-      const RunTable t = parse_run_table(read_file(csv_path), c, csv_path.string());
+      const RunTable t = parse_run_table(read_file(csv_path, kMaxRunTableBytes, "a run table"), c, csv_path.string());
       for (std::size_t i = 0; i < t.size(); ++i) {
         const std::uint64_t k = *row_run_index(t.line(i));  // < runs: parse_run_table checked
         if (!rows[k].empty()) {
@@ -445,20 +448,46 @@ int merge(const Options& o) {
     whole.end = c.runs;
     return write_outputs(c, out, whole, std::move(rows), o);
   } catch (const CampaignError& e) {
-    std::fprintf(stderr, "gyro_campaign: cannot merge: %s\n", e.what());
+    say(std::string("cannot merge: ") + e.what());
     return kExitBadInput;
   } catch (const OutputError& e) {
-    std::fprintf(stderr, "gyro_campaign: %s\n", e.what());
+    say(e.what());
     return kExitBadInput;
   }
+}
+
+// Every option value checked before anything is read: none is empty, none is read as "no
+// limit" or as its default. Sets the thread count and --run's K.
+bool check_values(const CLI::App& run, Options& o, std::string& why) {
+  const std::optional<std::uint64_t> threads = parse_count("-j", o.threads_text, kMaxThreads, why);
+  if (!threads) return false;
+  o.threads = static_cast<unsigned>(*threads);
+  if (o.threads == 0) o.threads = std::clamp(std::thread::hardware_concurrency(), 1u, kMaxThreads);
+  if (o.out.empty()) {
+    why = "-o is empty: name the output directory";
+    return false;
+  }
+  if (std::find(o.dirs.begin(), o.dirs.end(), std::string()) != o.dirs.end()) {
+    why = "merge: a directory is named by an empty string";
+    return false;
+  }
+  if (run.count("--shard") > 0 && o.shard.empty()) {
+    why = "--shard is empty: expected I/N, e.g. 2/8 (shard 2 of 8)";
+    return false;
+  }
+  if (run.count("--run") > 0) {
+    o.run = parse_count("--run", o.run_text, kMaxRuns - 1, why);
+    if (!o.run) return false;
+  }
+  return true;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   if (Cluster::launched_without_mpi()) {
-    std::fprintf(stderr, "gyro_campaign: started by an MPI launcher, but built without MPI: every process would run "
-                         "the whole campaign. Rebuild with MPI (Debian: libopenmpi-dev), or use --shard I/N.\n");
+    say("started by an MPI launcher, but built without MPI: every process would run the whole campaign. Rebuild "
+        "with MPI (Debian: libopenmpi-dev), or use --shard I/N.");
     return kExitBadInput;
   }
   gyro::campaign::Cluster cluster(argc, argv);
@@ -468,9 +497,11 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "run a campaign (or one run of it with --run)");
   run->add_option("campaign", o.campaign, "campaign file (JSON, see docs/campaigns.md)")->required();
   run->add_option("-o,--output", o.out, "output directory (created if missing)")->required();
-  run->add_option("-j,--jobs", o.threads, "worker threads per process (0: one per core)")->capture_default_str();
+  run->add_option("-j,--jobs", o.threads_text,
+                  "worker threads per process, at most " + std::to_string(kMaxThreads) + " (0: one per core)")
+      ->capture_default_str();
   run->add_option("--shard", o.shard, "run only shard I of N (1 <= I <= N) and write it for gyro_campaign merge");
-  run->add_option("--run", o.run, "rerun run K alone: its scenario, time history (gyro_sil CSV), plot and row");
+  run->add_option("--run", o.run_text, "rerun run K alone: its scenario, time history (gyro_sil CSV), plot and row");
   run->add_flag("--no-plots", o.no_plots, "no gnuplot plots");
   run->add_flag("-q,--quiet", o.quiet, "no progress or summary line on standard error");
   CLI::App* merge_cmd = app.add_subcommand("merge", "merge the output directories of a campaign's shards");
@@ -482,21 +513,27 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (!cluster.root()) return e.get_exit_code() == 0 ? 0 : kExitBadInput;
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    say(std::string(e.what()) + " (run with --help for more information)");
+    return kExitBadInput;
   }
-  if (o.threads == 0) o.threads = std::max(1u, std::thread::hardware_concurrency());
+  std::string why;
+  if (!check_values(*run, o, why)) {
+    if (cluster.root()) say(why);
+    return kExitBadInput;
+  }
+  gyro::sil::signal_cleanup::install();
 
   if (merge_cmd->parsed()) {
     if (cluster.size() > 1) {
-      if (cluster.root()) std::fprintf(stderr, "gyro_campaign: merge takes one process: run it without mpirun\n");
+      if (cluster.root()) say("merge takes one process: run it without mpirun");
       return kExitBadInput;
     }
     return merge(o);
   }
   if (o.run) {
     if (!o.shard.empty()) {
-      std::fprintf(stderr, "gyro_campaign: --run and --shard do not go together\n");
+      say("--run and --shard do not go together");
       return kExitBadInput;
     }
     return rerun(cluster, o);

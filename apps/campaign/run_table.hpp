@@ -34,6 +34,10 @@ namespace gyro::campaign {
 // A cell's number; nullopt for an empty or non-numeric cell.
 [[nodiscard]] std::optional<double> cell_number(std::string_view cell);
 
+// The largest runs.csv merge reads (1 GiB, checked before reading): kMaxRuns rows of about
+// 1 kB, the size of the seeker campaigns' rows.
+inline constexpr std::uint64_t kMaxRunTableBytes = 1u << 30;
+
 // The rows of a campaign's table, each kept as its line of CSV with the offsets of its cells
 // (about 1 kB a run for the seeker campaigns: a million runs fit in memory).
 class RunTable {

@@ -9,10 +9,11 @@
 #   time history byte for byte.
 # refusals: bad command lines, outputs that would overwrite inputs, shards that do not make
 #   one campaign; and every host input bounded, every user file safe (docs/campaigns.md):
-#   inputs that never end, too many runs or threads, option values that are empty, negative
-#   or not numbers, weights whose sum overflows, symbolic links and read-only files in the
-#   output directory, a directory in use (tests/campaign_lock_signals.sh: the lock under
-#   SIGINT, SIGTERM and SIGKILL), control characters in messages.
+#   inputs that never end or nest without end, too many runs or threads, option values that
+#   are empty, negative or not numbers, weights whose sum overflows, symbolic links and
+#   read-only files in the output directory, a directory in use
+#   (tests/campaign_lock_signals.sh: the lock under SIGINT, SIGTERM and SIGKILL), control
+#   characters in messages.
 cmake_minimum_required(VERSION 3.25)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -269,6 +270,12 @@ elseif(MODE STREQUAL "refusals")
     \"distribution\": \"choice\", \"values\": [\"float\", \"double\"], \"weights\": [1e308, 1e308] } ] }")
   run_refused(2 "weights.json: dispersions[0].weights: the weights' total overflows a double at weights[1]"
               "${EXE}" run "${WORK}/weights.json" -o "${WORK}/b")
+
+  # Nesting without end: refused while parsing (10^6 levels overflowed the stack).
+  string(REPEAT "[" 100000 deep)
+  file(WRITE "${WORK}/deep.json" "{ ${tiny}, \"runs\": 2, \"set\": { \"body.weave\": ${deep} } }")
+  run_refused(2 "deep.json: set.body.weave[0][0]" "${EXE}" run "${WORK}/deep.json" -o "${WORK}/b")
+  run_refused(2 "[0]: nested deeper than 32 levels" "${EXE}" run "${WORK}/deep.json" -o "${WORK}/b")
 
   # ---- Every user file safe.
   run_ok("${EXE}" run "${campaign}" -o "${WORK}/mine" -q)

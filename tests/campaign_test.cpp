@@ -394,6 +394,15 @@ TEST(CampaignBounds, GivenACampaignWhoseResolvedTextExceedsTheBoundThenRefusedSo
             std::string::npos) << e.reason();
 }
 
+TEST(CampaignBounds, GivenNestingDeeperThanTheBoundThenRefusedWhileParsingNamingWhere) {
+  const std::string deep(1'000'000, '[');  // overflowed the stack when copied or dumped
+  const CampaignError e = refusal_of([&] { (void)parse_text("{ \"set\": { \"body.weave\": " + deep + " } }"); });
+  EXPECT_EQ(e.reason(), "nested deeper than 32 levels");
+  std::string path = "set.body.weave";
+  for (std::size_t level = 2; level < kMaxCampaignDepth; ++level) path += "[0]";  // root, set, then arrays
+  EXPECT_EQ(e.field(), path);
+}
+
 TEST(CampaignBounds, GivenOptionCountsThenOnlyDecimalDigitsWithinTheBoundAreAccepted) {
   std::string why;
   EXPECT_EQ(parse_count("-j", "0", 1024, why), 0u);

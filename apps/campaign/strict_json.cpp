@@ -41,14 +41,22 @@ json parse_strict_json(std::string_view text, const std::string& file) {
   const auto element_starts = [&frames] {
     if (!frames.empty() && !frames.back().object) frames.back().index = frames.back().next_index++;
   };
+  const auto check_depth = [&] {
+    if (frames.size() >= kMaxCampaignDepth) {
+      throw CampaignError(file, frames.empty() ? "(root)" : path_of(frames),
+                          "nested deeper than " + std::to_string(kMaxCampaignDepth) + " levels");
+    }
+  };
   const json::parser_callback_t callback = [&](int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
         element_starts();
+        check_depth();
         frames.push_back(Frame{true, {}, {}, 0, 0});
         break;
       case json::parse_event_t::array_start:
         element_starts();
+        check_depth();
         frames.push_back(Frame{false, {}, {}, 0, 0});
         break;
       case json::parse_event_t::key: {

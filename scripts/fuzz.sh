@@ -14,7 +14,8 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(fuzz_rotor_step fuzz_component_tick fuzz_frame_decoder fuzz_scenario_parser)
+[ ${#targets[@]} -eq 0 ] && targets=(fuzz_rotor_step fuzz_component_tick fuzz_frame_decoder fuzz_scenario_parser
+                                    fuzz_campaign_file)
 case "$seconds" in '' | *[!0-9]*) echo "usage: $0 [seconds] [target ...]" >&2; exit 2 ;; esac
 
 scripts/setup.sh clang libclang-rt-14-dev
@@ -22,7 +23,7 @@ cmake --preset fuzz
 cmake --build --preset fuzz
 
 declare -A max_len=([fuzz_rotor_step]=512 [fuzz_component_tick]=4096 [fuzz_frame_decoder]=2048
-                   [fuzz_scenario_parser]=8192)
+                   [fuzz_scenario_parser]=8192 [fuzz_campaign_file]=16384)
 summary=()
 failed=()
 for t in "${targets[@]}"; do

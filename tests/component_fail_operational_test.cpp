@@ -116,7 +116,7 @@ struct Rig {
   }
 };
 
-const GyroComponentConfig<double> kSeeker = SeekerGyro<double>::component();
+const GyroComponentConfig<double> kSeekerConfig = SeekerGyro<double>::component();
 
 // ---- the persistence monitor ---------------------------------------------------------------
 
@@ -157,7 +157,7 @@ TEST(ComponentFailOperational, GivenStepsBeforeActivationThenRefusedCountedAndNo
   GyroComponent<double> c{wire};
   GuidanceInput<double> g;
   EXPECT_EQ(c.step(1, g), Status::kNotConfigured);
-  ASSERT_TRUE(c.configure(kSeeker).ok());
+  ASSERT_TRUE(c.configure(kSeekerConfig).ok());
   EXPECT_EQ(c.step(2, g), Status::kNotConfigured);
   EXPECT_EQ(c.telemetry().flags, static_cast<std::uint32_t>(kNotActive));
   EXPECT_EQ(c.telemetry().counters[16], 2u) << "both refusals are counted";
@@ -185,7 +185,7 @@ TEST(ComponentFailOperational, GivenOneCorruptedTickFarAheadThenTwoTicksFlaggedA
   EXPECT_EQ(rig.count(kTickInvalid), 2u);
   EXPECT_EQ(rig.component.mode(), GyroMode::kFree);
   EXPECT_EQ(rig.tm().rate_cmd_rad_s, Vector2<double>(0.2, -0.1)) << "still slewing as commanded";
-  EXPECT_LT(rig.tm().residual_rad.cwiseAbs().maxCoeff(), kSeeker.residual_limit_rad / 10);
+  EXPECT_LT(rig.tm().residual_rad.cwiseAbs().maxCoeff(), kSeekerConfig.residual_limit_rad / 10);
   // A cage request is honoured at once.
   ASSERT_EQ(rig.step(ModeRequest::kCage), Status::kOk);
   EXPECT_EQ(rig.component.mode(), GyroMode::kCaged);
@@ -202,7 +202,7 @@ TEST(ComponentFailOperational, GivenARepeatedOrBackwardCountThenEachIsOneTickAnd
     (void)rig.step_with(count, rig.good_guidance());
     // The component is never refused and never predicts a tick that did not pass: the
     // residual stays at the clean run's level.
-    EXPECT_LT(rig.tm().residual_rad.cwiseAbs().maxCoeff(), kSeeker.residual_limit_rad / 10) << k;
+    EXPECT_LT(rig.tm().residual_rad.cwiseAbs().maxCoeff(), kSeekerConfig.residual_limit_rad / 10) << k;
   }
   EXPECT_NE(rig.tm().counters[15], 0u);
   EXPECT_EQ(rig.component.mode(), GyroMode::kFault) << "counts this bad for this long latch a fault";
@@ -233,7 +233,7 @@ TEST(ComponentFailOperational, GivenAGapOfLostTicksThenItIsBridgedFlaggedAndTheR
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   rig.run(10);
-  EXPECT_EQ(rig.step_with(rig.tick + 1 + kSeeker.max_tick_gap, rig.good_guidance()), Status::kInputIgnored);
+  EXPECT_EQ(rig.step_with(rig.tick + 1 + kSeekerConfig.max_tick_gap, rig.good_guidance()), Status::kInputIgnored);
   EXPECT_NE(rig.tm().flags & kTickInvalid, 0u);
 }
 
@@ -321,7 +321,7 @@ TEST(ComponentFailOperational, GivenNineteenInvalidReadingsInEveryTwentyThenTheF
     (void)rig.step();
   }
   EXPECT_EQ(rig.component.mode(), GyroMode::kFault);
-  EXPECT_LE(k, static_cast<int>(kSeeker.invalid_persistence_ticks) + 2);
+  EXPECT_LE(k, static_cast<int>(kSeekerConfig.invalid_persistence_ticks) + 2);
 }
 
 TEST(ComponentFailOperational, GivenAPersistentBiasJumpThenFaultLatchedAndACageRequestRecoversTheGyro) {
@@ -332,7 +332,7 @@ TEST(ComponentFailOperational, GivenAPersistentBiasJumpThenFaultLatchedAndACageR
   int k = 0;
   for (; k < 100 && rig.component.mode() != GyroMode::kFault; ++k) (void)rig.step();
   EXPECT_EQ(rig.component.mode(), GyroMode::kFault);
-  EXPECT_EQ(k, static_cast<int>(kSeeker.invalid_persistence_ticks)) << "each reading rejected as a jump";
+  EXPECT_EQ(k, static_cast<int>(kSeekerConfig.invalid_persistence_ticks)) << "each reading rejected as a jump";
   // In safe mode the shifted readings are the reference: caging is possible.
   (void)rig.step();
   ASSERT_EQ(rig.step(ModeRequest::kCage), Status::kOk);

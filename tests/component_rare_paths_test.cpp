@@ -21,7 +21,7 @@ namespace {
 using testing::Bench;
 using testing::SeekerGyro;
 
-const GyroComponentConfig<double> kSeeker = SeekerGyro<double>::component();
+const GyroComponentConfig<double> kSeekerDefaults = SeekerGyro<double>::component();
 
 // The component on the SIL stub's gimbal plant, the body given as rates at each tick (the
 // plant takes them linear in between) and the attitude that such a motion reaches.
@@ -67,7 +67,7 @@ struct PlantBench {
 // finely. At a 10 kHz tick (beta dt = 0.38 rad) the two differ by a factor of 16:
 // 5.3e-6 rad against 3.3e-7 rad.
 TEST(ComponentBodyRate, GivenTheBodysRateRampingWithinATickThenThePredictionFollowsTheMeanRateOverIt) {
-  GyroComponentConfig<double> c = kSeeker;
+  GyroComponentConfig<double> c = kSeekerDefaults;
   c.tick_s = 1e-4;
   c.uncage_settle_ticks = 1;
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
@@ -102,7 +102,7 @@ TEST(ComponentPickoffs, GivenStaleReadingsThenTheJumpBoundWidensByTheTicksWithou
   Bench b;
   ASSERT_TRUE(b.ok);
   b.run(3);
-  const double bound = kSeeker.max_pickoff_step_rad;
+  const double bound = kSeekerDefaults.max_pickoff_step_rad;
   b.port.hold_sequence = true;
   for (int k = 0; k < 3; ++k) {
     ASSERT_EQ(b.step(), Status::kOk);
@@ -124,7 +124,7 @@ TEST(ComponentSpin, GivenAReadbackMarkedInvalidThenTheNominalSpinIsUsed) {
   for (const double spin : {350.0, 100.0}) {
     b.port.reading.spin_hz = spin;
     ASSERT_EQ(b.step(), Status::kOk);
-    EXPECT_EQ(b.tm().spin_hz, kSeeker.nominal_spin_hz) << spin;
+    EXPECT_EQ(b.tm().spin_hz, kSeekerDefaults.nominal_spin_hz) << spin;
     EXPECT_FALSE(b.raised(kSpinLow)) << spin;
   }
   b.port.reading.spin_valid = true;
@@ -168,8 +168,8 @@ TEST(ComponentNavigation, GivenNavigationLostWhileTheBodyTurnsThenTheTorqueLawTa
 TEST(ComponentModes, GivenSafeModeWithoutAMeasuredTickWhenLeftThenTheResidualFaultTakesItsFullPersistenceAgain) {
   Bench b;
   ASSERT_TRUE(b.ok);
-  const std::uint32_t n = kSeeker.residual_persistence_ticks;
-  const double limit = kSeeker.residual_limit_rad;
+  const std::uint32_t n = kSeekerDefaults.residual_persistence_ticks;
+  const double limit = kSeekerDefaults.residual_limit_rad;
   b.run(5);
   // A reading 4e-3 rad off the prediction (within the jump bound, twice the residual limit):
   // the residual exceeds its limit on n - 1 ticks, one short of the fault.
@@ -181,7 +181,7 @@ TEST(ComponentModes, GivenSafeModeWithoutAMeasuredTickWhenLeftThenTheResidualFau
   ASSERT_EQ(b.component.mode(), GyroMode::kCaged);
   // The readings fail: safe mode on the reading monitor.
   b.port.reading.valid = false;
-  b.run(static_cast<int>(kSeeker.invalid_persistence_ticks));
+  b.run(static_cast<int>(kSeekerDefaults.invalid_persistence_ticks));
   ASSERT_EQ(b.component.mode(), GyroMode::kFault);
   ASSERT_EQ(b.tm().flags & kResidualFault, 0u);
   // Readings back, navigation not: no measured tick, and out of safe mode on request.
@@ -208,7 +208,7 @@ TEST(ComponentModes, GivenSafeModeWithoutAMeasuredTickWhenLeftThenTheResidualFau
 // Uncaging settles for uncage_settle_ticks before the gyro is free, counted from each uncage
 // request: neither an uncaging abandoned half way nor a completed one shortens the next.
 TEST(ComponentModes, GivenTheGyroCagedAgainWhenUncagedOnceMoreThenItSettlesForTheFullCountAgain) {
-  GyroComponentConfig<double> c = kSeeker;
+  GyroComponentConfig<double> c = kSeekerDefaults;
   c.uncage_settle_ticks = 20;
   Bench b(c);
   ASSERT_TRUE(b.ok);
@@ -259,7 +259,7 @@ TEST(ComponentModes, GivenAReadingOffTheCagedPredictionWhenUncagedThenTheTickRep
 // pi/31 (m would be 16: off, a step of the law passes at once). The step: a gimbal reading
 // that appears while caged, whose loop asks a constant rate from then on.
 TEST(ComponentTorqueShaper, GivenANutationNeedingFifteenTicksBetweenTapsThenShapedAndSixteenThenOff) {
-  GyroComponentConfig<double> c = kSeeker;
+  GyroComponentConfig<double> c = kSeekerDefaults;
   c.min_spin_hz = 1.0;
   const double j = c.pitch_inertia;
   for (const int steps_per_half_turn : {29, 31}) {
@@ -289,7 +289,7 @@ TEST(ComponentTorqueShaper, GivenANutationNeedingFifteenTicksBetweenTapsThenShap
 // beta dt = 3.77 (the seeker at 1 kHz) excites the nutation as 2 pi - 3.77 = 2.51 does (m = 1,
 // a = 1 / (2 (1 - cos 2.51))); a whole turn a tick, or a turn and 2.51, none.
 TEST(ComponentTorqueShaper, GivenATickAliasingTheNutationThenShapedByTheFoldedPhaseWithinATurn) {
-  GyroComponentConfig<double> c = kSeeker;
+  GyroComponentConfig<double> c = kSeekerDefaults;
   c.min_spin_hz = 1.0;
   const double j = c.pitch_inertia;
   const double seeker = 3.77;
@@ -318,7 +318,7 @@ TEST(ComponentTorqueShaper, GivenATickAliasingTheNutationThenShapedByTheFoldedPh
 // readback all along. The ratio of their first torques is a(old beta) / a(new beta) when the
 // design was kept and 1 when it was redone; a(beta) = 1 / (2 (1 - cos(8 beta dt))), beta = H / J.
 TEST(ComponentTorqueShaper, GivenASpinReadbackWithinATenthOfAPercentOfTheDesignsThenTheDesignIsKeptAndBeyondRedone) {
-  GyroComponentConfig<double> c = kSeeker;
+  GyroComponentConfig<double> c = kSeekerDefaults;
   c.min_spin_hz = 10.0;
   const double j = c.pitch_inertia;
   const double beta_dt = kPi<double> / 15;  // taps 8 ticks apart, and still 8 at 0.5 % less
@@ -359,7 +359,7 @@ TEST(ComponentTorqueShaper, GivenASpinReadbackWithinATenthOfAPercentOfTheDesigns
 // the cage loop's torques; caged again at a zero reading with the body at rest, the law asks
 // for nothing, and nothing from before the fault may be blended in.
 TEST(ComponentTorqueShaper, GivenSafeModeEnteredWhileTheCageLoopPullsWhenCagedAtRestThenNoTorqueOfBeforeIsWritten) {
-  GyroComponentConfig<double> c = kSeeker;
+  GyroComponentConfig<double> c = kSeekerDefaults;
   c.min_spin_hz = 10.0;
   const double beta_dt = kPi<double> / 7.5;  // taps 4 ticks apart
   Bench b(c);

@@ -487,11 +487,11 @@ TYPED_TEST(GyroSmallAngle, GivenNutationAmplitudeAboveTheLimitThenFlagRaised) {
 }
 
 TEST(GyroSmallAngleReportSample, GivenReportSampleThenNoStepRaisesTheFlag) {
-  using S = ReportSample<double>;
+  using Report = ReportSample<double>;
   int steps = 0, raised = 0;
   double largest_amplitude = 0, largest_angle = 0;
   const SampleRunSummary sum = run_report_sample<double>(
-      S::initg_step(), S::kSteps, [&](int, double, const GyroModel<double>& g, const Matrix3<double>&) {
+      Report::initg_step(), Report::kSteps, [&](int, double, const GyroModel<double>& g, const Matrix3<double>&) {
         ++steps;
         raised += g.small_angle_exceeded() ? 1 : 0;
         largest_amplitude = std::max(largest_amplitude, g.nutation_amplitude_rad().maxCoeff());

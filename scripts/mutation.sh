@@ -235,7 +235,8 @@ echo "   ${#stages[@]} test executables run before the whole suite, the last kil
 
 # Runs the stages for the current mutant; sets result/detail when one kills it and moves that
 # executable to the front. The first (the last killer) is built alone, the rest `jobs` at a
-# time (one test is one translation unit: built alone it would leave the other cores idle).
+# time (a test executable is a few unity translation units: built alone it could leave the
+# other cores idle).
 # Returns 1 when every stage passed (the whole suite decides).
 run_stages() {  # id
   local start=0 size=1 k exe wd filt name rc names

@@ -125,11 +125,13 @@ void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
       // fastest turn it can hold: the navigation's limit or the torquer's authority T / H.
       const double protect_cone = cone - static_cast<double>(c.gimbal_stop_margin_rad);
       const double hold = std::min(static_cast<double>(c.max_body_rate_rad_s), static_cast<double>(c.max_torque) / h);
-      const double turn_gain = protect_cone > 0.0 ? hold / std::sin(protect_cone) : terms.alpha;
-      above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), terms.alpha - turn_gain,
-            "the bearings' nutation damping (f/2)(1/J1 + 1/J2) less the stop protection's turn gain b / sin c_p",
-            "no torque shaper at this tick (gyro/torque_shaper.hpp): the caging loop and the stop protection "
-            "would pump the nutation");
+      // (No protection cone at all is the margin's refusal below, not this rule's.)
+      if (protect_cone > 0.0) {
+        above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), terms.alpha - hold / std::sin(protect_cone),
+              "the bearings' nutation damping (f/2)(1/J1 + 1/J2) less the stop protection's turn gain b / sin c_p",
+              "no torque shaper at this tick (gyro/torque_shaper.hpp): the caging loop and the stop protection "
+              "would pump the nutation");
+      }
     }
   }
   // Cone, margin, pickoff range.

@@ -726,6 +726,7 @@ TEST(SilCliValidation, GivenEachScenarioThatUsedToFailOnItsFirstTickThenRefusedN
       {"overflow_spin.json", "gyro.rotor.spin_hz"},
       {"overflow_inertia.json", "gyro.rotor.pitch_inertia"},
       {"overflow_torquer_scale.json", "gyro.torquer.scale_factor"},
+      {"overflow_pickoff_lsb.json", "gyro.pickoff.lsb_rad"},
       {"overflow_body_rate.json", "body.rate_rad_s[0]"},
       {"overflow_float_slew.json", "guidance.schedule[0].slew_rate_rad_s[0]"},
       {"overflow_component_rotor.json", "component.pitch_inertia"},

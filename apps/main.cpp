@@ -22,9 +22,11 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "csv_writer.hpp"
+#include "sil_option_values.hpp"
 #include "output_files.hpp"
 #include "plot.hpp"
 #include "printable.hpp"
@@ -151,8 +153,9 @@ int main(int argc, char** argv) {
   std::string csv_path = "-";
   std::string plot_path;
   std::string precision_name;
-  std::uint64_t max_output_bytes = kDefaultMaxOutputBytes;
-  double plot_timeout_s = kDefaultPlotTimeoutS;
+  std::string max_output_bytes_text;  // parsed after CLI11 (sil_option_values.hpp): no silent wrap
+  std::string plot_timeout_text;
+  std::string pil_timeout_text;
   bool quiet = false;
   std::uint64_t ticks = 0;
   PilOptions pil;
@@ -165,12 +168,12 @@ int main(int argc, char** argv) {
   app.add_option("--precision", precision_name, "run the component and the stub in float or double "
                                                 "(default: the scenario's run.precision)")
       ->check(CLI::IsMember({"float", "double"}));
-  app.add_option("--max-output-bytes", max_output_bytes,
-                 "refuse a run whose CSV could exceed this size: bytes, or with a unit (kB = 1000 B, KiB, MB, "
-                 "MiB, GB, GiB, ...; default 1GiB)")
-      ->transform(CLI::AsSizeValue(true));
-  app.add_option("--plot-timeout", plot_timeout_s, "seconds gnuplot may take before it is stopped (default 300)")
-      ->check(CLI::PositiveNumber);
+  CLI::Option* max_output_opt =
+      app.add_option("--max-output-bytes", max_output_bytes_text,
+                     "refuse a run whose CSV could exceed this size: bytes, or with a unit (kB = 1000 B, KiB, MB, "
+                     "MiB, GB, GiB, ...; default 1GiB; at least 1 B, no value turns the bound off)");
+  CLI::Option* plot_timeout_opt = app.add_option(
+      "--plot-timeout", plot_timeout_text, "seconds gnuplot may take before it is stopped (default 300, at most 86400)");
   app.add_option("--ticks", ticks, "run this many ticks after tick 0 instead of the scenario's duration")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
   app.add_flag("-q,--quiet", quiet, "no progress or summary on standard error (failures are still reported)");
@@ -191,17 +194,57 @@ int main(int argc, char** argv) {
   app.add_option("--pil-fault", pil_faults, "inject a fault on the gyro link: KIND@TICK[+TICKS], KIND one of crc, "
                                             "drop, duplicate, stall, noise (repeatable)")
       ->needs(pil_opt);
-  app.add_option("--pil-timeout", pil.timeout_s, "seconds of silence from the target before giving up")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber)
-      ->needs(pil_opt);
+  CLI::Option* pil_timeout_opt =
+      app.add_option("--pil-timeout", pil_timeout_text,
+                     "seconds of silence from the target before giving up (default 30, at most 3600)")
+          ->needs(pil_opt);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     return fail(kExitRefused, "bad command line: " + printable(e.what()) + " (see --help)");
   }
-  if (max_output_bytes == 0) return fail(kExitRefused, "bad command line: --max-output-bytes must be > 0");
+  // Every value CLI11 took as text, checked whole before anything else (sil_option_values.hpp).
+  std::string refusal;
+  const auto refused = [&refusal] { return fail(kExitRefused, "bad command line: " + refusal + " (see --help)"); };
+  struct StringOption {
+    const char* name;
+    const std::string* value;
+    const char* what;  // what to give instead of nothing
+  };
+  const StringOption strings[] = {
+      {"scenario", &scenario_path, "a scenario file"},
+      {"--output", &csv_path, "a file name, or - for standard output"},
+      {"--plot", &plot_path, "a PNG file name"},
+      {"--precision", &precision_name, "float or double"},
+      {"--pil", &pil.socket, "the path of the target's serial socket"},
+      {"--pil-firmware", &pil.firmware, "a PIL image (gyro_fw_pil.elf)"},
+      {"--pil-machine", &pil.machine, "a QEMU machine (mps2-an386, mps2-an500)"}};
+  for (const StringOption& o : strings) {
+    const CLI::Option* opt = app.get_option_no_throw(o.name);
+    const bool given = std::string_view(o.name) == "scenario" || (opt != nullptr && opt->count() != 0);
+    if (given && !check_not_empty(o.name, *o.value, o.what, refusal)) return refused();
+  }
+  for (const std::string& text : pil_faults) {
+    if (!check_not_empty("--pil-fault", text, "KIND@TICK[+TICKS]", refusal)) return refused();
+  }
+  std::uint64_t max_output_bytes = kDefaultMaxOutputBytes;
+  if (max_output_opt->count() != 0) {
+    const std::optional<std::uint64_t> v = parse_byte_size("--max-output-bytes", max_output_bytes_text, refusal);
+    if (!v) return refused();
+    max_output_bytes = *v;
+  }
+  double plot_timeout_s = kDefaultPlotTimeoutS;
+  if (plot_timeout_opt->count() != 0) {
+    const std::optional<double> v = parse_seconds("--plot-timeout", plot_timeout_text, kMaxPlotTimeoutS, refusal);
+    if (!v) return refused();
+    plot_timeout_s = *v;
+  }
+  if (pil_timeout_opt->count() != 0) {
+    const std::optional<double> v = parse_seconds("--pil-timeout", pil_timeout_text, kMaxPilTimeoutS, refusal);
+    if (!v) return refused();
+    pil.timeout_s = *v;
+  }
   signal_cleanup::install();
   const std::string shown = printable(scenario_path);
 
@@ -210,7 +253,7 @@ int main(int argc, char** argv) {
   for (const std::string& text : pil_faults) {
     std::string error;
     const std::optional<WireFault> f = parse_wire_fault(text, error);
-    if (!f) return fail(kExitRefused, "bad command line: --pil-fault " + printable(text) + ": " + error);
+    if (!f) return fail(kExitRefused, "bad command line: --pil-fault " + quoted_value(text) + ": " + error);
     pil.faults.push_back(*f);
   }
   if (pil_tick_clocks != 0) pil.tick_clocks = pil_tick_clocks;

@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "gyro/link/frame.hpp"
+#include "printable.hpp"
 
 namespace gyro::sil {
 
@@ -42,7 +43,7 @@ std::optional<WireFault> parse_wire_fault(std::string_view text, std::string& er
     if (name == wire_fault_name(static_cast<WireFaultKind>(i))) kind = static_cast<WireFaultKind>(i);
   }
   if (!kind) {
-    error = "unknown wire fault '" + std::string(name) + "' (crc, drop, duplicate, stall, noise)";
+    error = "unknown wire fault \"" + printable(name) + "\" (crc, drop, duplicate, stall, noise)";
     return std::nullopt;
   }
   const auto number = [](std::string_view s, std::uint64_t& out) {
@@ -60,7 +61,7 @@ std::optional<WireFault> parse_wire_fault(std::string_view text, std::string& er
   f.kind = *kind;
   if (!number(rest.substr(0, plus), f.start_tick) ||
       (plus != std::string_view::npos && (!number(rest.substr(plus + 1), f.ticks) || f.ticks == 0u))) {
-    error = "bad tick or tick count in '" + std::string(text) + "' (KIND@TICK[+TICKS], TICKS >= 1)";
+    error = "bad tick or tick count in \"" + printable(text) + "\" (KIND@TICK[+TICKS], TICKS >= 1)";
     return std::nullopt;
   }
   return f;

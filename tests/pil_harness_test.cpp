@@ -5,12 +5,14 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
 
+#include "gyro/link/gyro_link_messages.hpp"
 #include "gyro/pil/harness.hpp"
 
 namespace gyro::pil {
@@ -71,6 +73,78 @@ void config_round_trip() {
   EXPECT_EQ(out.component.use_spin_readback, false);
   EXPECT_EQ(out.component.friction_compensation, true);
   EXPECT_EQ(out.timer_period, 25000u);
+}
+
+// The target's gyro line under noise: each tick brings `noise` random bytes and then the
+// pickoff frame into the receive FIFO, the port reads once. What arrived, and the bytes the
+// FIFO dropped.
+struct LineRun {
+  std::uint32_t readings{0};  // reads that returned kOk
+  std::uint32_t current{0};   // of them, with the frame of their own tick (not a late one)
+  std::uint32_t dropped{0};
+};
+
+template <typename T, typename Port>
+LineRun noisy_line(std::size_t noise, int ticks) {
+  GyroWire wire;
+  Port port(wire);
+  LineRun run;
+  std::uint64_t state = 0x243F6A8885A308D3ull;
+  for (int k = 0; k < ticks; ++k) {
+    for (std::size_t i = 0; i < noise; ++i) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      if (!wire.rx().push(static_cast<std::uint8_t>(state >> 56u))) ++run.dropped;
+    }
+    PickoffReading<T> r;
+    r.gimbal_angle_rad = Vector2<T>(T(0.01), T(-0.02));
+    r.sequence = static_cast<std::uint32_t>(k + 1);
+    r.valid = true;
+    std::array<std::uint8_t, link::kGyroLinkFrameBytes<T>> frame{};
+    const std::size_t n = link::encode_frame(link::encode_pickoff(r, static_cast<std::uint8_t>(k)), frame);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!wire.rx().push(frame[i])) ++run.dropped;
+    }
+    PickoffReading<T> out;
+    if (port.read_pickoffs(out) == PortStatus::kOk) {
+      ++run.readings;
+      if (out.sequence == r.sequence) ++run.current;
+    }
+  }
+  return run;
+}
+
+// 120 bytes of line noise a tick: a read of 4 frames (144 bytes in double, 96 in float) fell
+// behind by the excess every tick until the FIFO dropped bytes and the readings starved (9 of
+// 3,000 here in double, 3 in float; 10 of 3,001 in the M7 image under gyro_sil --pil). The PIL's port drains the FIFO (256 bytes a read, more than the 255 the
+// line delivers a tick): nothing is dropped and a reading arrives on (nearly) every tick.
+template <typename T>
+void expect_readings_keep_arriving() {
+  constexpr int kTicks = 3000;
+  static_assert(link::kGyroLinkFrameBytes<T> + 120 <= kGyroLineBytesPerTick, "a tick's bytes fit the line");
+  const LineRun drained = noisy_line<T, GyroLinkPort<T>>(120, kTicks);
+  EXPECT_EQ(drained.dropped, 0u);
+  EXPECT_GE(drained.current, static_cast<std::uint32_t>(kTicks * 99 / 100));
+  EXPECT_EQ(drained.current, drained.readings);
+  // The most the line can bring, 255 bytes a tick, is drained as well.
+  const LineRun full = noisy_line<T, GyroLinkPort<T>>(kGyroLineBytesPerTick - link::kGyroLinkFrameBytes<T>, kTicks);
+  EXPECT_EQ(full.dropped, 0u);
+  EXPECT_GE(full.current, static_cast<std::uint32_t>(kTicks * 98 / 100));
+  // The old bound of a read, 4 frames, under the same noise: the backlog fills the FIFO.
+  const LineRun four_frames = noisy_line<T, LinkGyroPort<T>>(120, kTicks);
+  EXPECT_GT(four_frames.dropped, 10000u);  // 12 bytes a tick behind in double, 48 in float
+  EXPECT_LT(four_frames.readings, static_cast<std::uint32_t>(kTicks / 10));
+  std::printf("%zu-byte frames, 120 bytes of noise a tick, %d ticks: %u readings (%u bytes dropped) draining, "
+              "%u at the line's 255 bytes a tick; %u readings (%u current, %u bytes dropped) reading 4 frames\n",
+              link::kGyroLinkFrameBytes<T>, kTicks, drained.current, drained.dropped, full.current,
+              four_frames.readings, four_frames.current, four_frames.dropped);
+}
+
+TEST(PilGyroLine, GivenAHundredAndTwentyBytesOfNoiseATickThenReadingsKeepArrivingInFloat) {
+  expect_readings_keep_arriving<float>();
+}
+
+TEST(PilGyroLine, GivenAHundredAndTwentyBytesOfNoiseATickThenReadingsKeepArrivingInDouble) {
+  expect_readings_keep_arriving<double>();
 }
 
 TEST(PilHarness, GivenAConfigurationThenEveryFieldCrossesTheWire) {

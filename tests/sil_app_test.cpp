@@ -353,6 +353,7 @@ TEST(SilBadScenarios, GivenEachMalformedScenarioThenItIsRefusedNamingFileFieldAn
       {"overflow_inertia.json", {"gyro.rotor.pitch_inertia", "is below its lower bound (1e-12)"}},
       {"overflow_component_rotor.json", {"component.pitch_inertia", "refused by GyroComponent::configure"}},
       {"overflow_torquer_scale.json", {"gyro.torquer.scale_factor", "is above its upper bound (10)"}},
+      {"overflow_pickoff_lsb.json", {"gyro.pickoff.lsb_rad", "is below pickoff.range_rad over 2^31 - 1 codes (2.79397e-10)"}},
       {"overflow_error_source.json", {"gyro.errors.pitch.static_drift_rad_s", "is above its upper bound (1)"}},
       {"overflow_body_rate.json", {"body.rate_rad_s[0]", "more than pi"}},
       {"overflow_float_slew.json", {"guidance.schedule[0].slew_rate_rad_s[0]", "not representable in float"}},

@@ -602,6 +602,119 @@ TEST(SilCliResources, GivenAnUnreadableFileAsTheScenarioThenReportedAsSuch) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Option values: checked whole, before anything runs; no bound switched off by a number
+
+bool has_control_characters(const std::string& s) {
+  return std::any_of(s.begin(), s.end(), [](char c) {
+    const auto b = static_cast<unsigned char>(c);
+    return (b < 0x20 && b != '\n') || b == 0x7f;
+  });
+}
+
+// A refusal of the command line: exit status 2, one line naming `shown` (the option and its
+// value as echoed), no control character, nothing written in the user's directory.
+void expect_refused(const Scratch& s, const std::vector<std::string>& args, const std::string& shown,
+                    const std::string& bound = "") {
+  std::string trace;
+  for (const std::string& a : args) trace += "[" + a + "] ";
+  SCOPED_TRACE(trace);
+  Options o;
+  o.file_size_limit = 50u << 20;  // were a refusal to regress into a run, stop it at 50 MB
+  const Result r = run(s, args, o);
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_EQ(lines_in(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("bad command line: " + shown), std::string::npos) << r.err;
+  if (!bound.empty()) {
+    EXPECT_NE(r.err.find(bound), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(has_control_characters(r.err)) << r.err;
+  EXPECT_FALSE(fs::exists(s.work() / "a.csv"));
+  EXPECT_FALSE(fs::exists(s.work() / "p.png"));
+}
+
+TEST(SilCliOptions, GivenANegativeOrMalformedOutputBoundThenRefusedNamingTheOptionAndTheValue) {
+  Scratch s;
+  // 100 million ticks: about 58 GB of CSV. "-1" once wrapped to 2^64 - 1 and started it.
+  write_long_scenario(s.work() / "huge.json", 100000000);
+  for (const char* v : {"-1", "-1GiB", "", "abc", "1.5MB", "0", "0GiB", "2xB", "99999999999999999999", "17EiB",
+                        " 1MB", "+5"}) {
+    expect_refused(s, {"huge.json", "-q", "-o", "a.csv", "--max-output-bytes", v},
+                   "--max-output-bytes \"" + std::string(v) + "\": ");
+  }
+  // The largest size a number can give is still a bound, and the units are those of before.
+  const Result huge = run(s, {"huge.json", "-q", "-o", "a.csv", "--max-output-bytes", "16EiB"});
+  EXPECT_EQ(huge.exit_status, 2) << huge.err;
+  write_long_scenario(s.work() / "l.json", 10000);  // about 5 MB of CSV
+  for (const char* v : {"1MB", "1 MB", "4000kB", "1mib", "5000000B"}) {
+    const Result r = run(s, {"l.json", "-q", "-o", "a.csv", "--max-output-bytes", v});
+    EXPECT_EQ(r.exit_status, 2) << v << ": " << r.err;
+    EXPECT_NE(r.err.find("more than the limit of"), std::string::npos) << r.err;
+  }
+  for (const char* v : {"10MB", "10 MiB", "1gb", "1EiB", "18446744073709551615"}) {
+    const Result r = run(s, {"l.json", "-q", "-o", "a.csv", "--max-output-bytes", v});
+    EXPECT_EQ(r.exit_status, 0) << v << ": " << r.err;
+  }
+}
+
+TEST(SilCliOptions, GivenANonFiniteNegativeZeroEmptyOrHugeTimeoutThenRefusedNamingOptionValueAndBound) {
+  Scratch s;
+  s.scenario();
+  const char* bad[] = {"nan", "NaN", "-nan", "inf", "-inf", "infinity", "-1", "0", "-0", "", "1e400",
+                       "1e-400", "5s", " 5", "abc"};
+  for (const char* v : bad) {
+    expect_refused(s, {"s.json", "-q", "-o", "a.csv", "--plot", "p.png", "--plot-timeout", v},
+                   "--plot-timeout \"" + std::string(v) + "\": ", "<= 86400");
+    // Refused before the socket is even looked at (there is none).
+    expect_refused(s, {"s.json", "-q", "-o", "a.csv", "--pil", (s.root() / "none.sock").string(), "--pil-timeout", v},
+                   "--pil-timeout \"" + std::string(v) + "\": ", "<= 3600");
+  }
+  expect_refused(s, {"s.json", "-q", "-o", "a.csv", "--plot-timeout", "86401"}, "--plot-timeout \"86401\": ",
+                 "more than the limit of 86400 s");
+  expect_refused(s, {"s.json", "-q", "-o", "a.csv", "--pil", "x.sock", "--pil-timeout", "3600.5"},
+                 "--pil-timeout \"3600.5\": ", "more than the limit of 3600 s");
+  const Result ok = run(s, {"s.json", "-q", "-o", "a.csv", "--plot", "p.png", "--plot-timeout", "86400"});
+  EXPECT_EQ(ok.exit_status, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(s.work() / "p.png"));
+}
+
+TEST(SilCliOptions, GivenAnEmptyValueOfAnyStringOptionThenRefusedNamingTheOption) {
+  Scratch s;
+  s.scenario();
+  const std::string sock = (s.root() / "none.sock").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string shown;
+  };
+  const Case cases[] = {
+      {{"", "-o", "a.csv"}, "scenario \"\": empty"},
+      {{"s.json", "-o", ""}, "--output \"\": empty"},
+      {{"s.json", "--output", ""}, "--output \"\": empty"},
+      {{"s.json", "-o", "a.csv", "--plot", ""}, "--plot \"\": empty"},
+      {{"s.json", "-o", "a.csv", "--pil", ""}, "--pil \"\": empty"},
+      {{"s.json", "-o", "a.csv", "--pil", sock, "--pil-firmware", ""}, "--pil-firmware \"\": empty"},
+      {{"s.json", "-o", "a.csv", "--pil", sock, "--pil-machine", ""}, "--pil-machine \"\": empty"},
+      {{"s.json", "-o", "a.csv", "--pil", sock, "--pil-fault", ""}, "--pil-fault \"\": empty"},
+      {{"s.json", "-o", "a.csv", "--precision", ""}, "--precision"},
+  };
+  for (const Case& c : cases) expect_refused(s, c.args, c.shown);
+}
+
+TEST(SilCliOptions, GivenControlCharactersInAnOptionValueThenTheEchoIsEscaped) {
+  Scratch s;
+  s.scenario();
+  const std::string sock = (s.root() / "none.sock").string();
+  // The wire fault's kind and its ticks are echoed twice: the option's value and the reason.
+  expect_refused(s, {"s.json", "-o", "a.csv", "--pil", sock, "--pil-fault", "\x1b[31mcrc@1"},
+                 "--pil-fault \"\\x1b[31mcrc@1\": unknown wire fault \"\\x1b[31mcrc\"");
+  expect_refused(s, {"s.json", "-o", "a.csv", "--pil", sock, "--pil-fault", "crc@1\x1b]0;x\x07"},
+                 "--pil-fault \"crc@1\\x1b]0;x\\x07\": bad tick or tick count in \"crc@1\\x1b]0;x\\x07\"");
+  expect_refused(s, {"s.json", "-o", "a.csv", "--max-output-bytes", "1\x1b[2J"},
+                 "--max-output-bytes \"1\\x1b[2J\": unknown unit \"\\x1b[2J\"");
+  expect_refused(s, {"s.json", "-o", "a.csv", "--plot-timeout", "\r5"}, "--plot-timeout \"\\r5\": not a number");
+  expect_refused(s, {"s.json", "-o", "a.csv", "--ticks", "\x1b[31m"}, "--ticks");
+}
+
+// ---------------------------------------------------------------------------------------
 // Validation: the scenarios that passed and then failed on their first tick
 
 TEST(SilCliValidation, GivenEachScenarioThatUsedToFailOnItsFirstTickThenRefusedNamingTheFieldAndNothingWritten) {
@@ -613,6 +726,7 @@ TEST(SilCliValidation, GivenEachScenarioThatUsedToFailOnItsFirstTickThenRefusedN
       {"overflow_spin.json", "gyro.rotor.spin_hz"},
       {"overflow_inertia.json", "gyro.rotor.pitch_inertia"},
       {"overflow_torquer_scale.json", "gyro.torquer.scale_factor"},
+      {"overflow_pickoff_lsb.json", "gyro.pickoff.lsb_rad"},
       {"overflow_body_rate.json", "body.rate_rad_s[0]"},
       {"overflow_float_slew.json", "guidance.schedule[0].slew_rate_rad_s[0]"},
       {"overflow_component_rotor.json", "component.pitch_inertia"},

@@ -3,12 +3,14 @@
 // advance), and checks the readings against the truth and against GyroModel stepped by hand.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "gyro/attitude.hpp"
@@ -235,6 +237,91 @@ TEST(SimulatedGyroPickoff, GivenRangeThenReadingsSaturateAtTheLargestCodeInRange
   c.pickoff.lsb_rad = 0;  // no quantisation: the range itself
   const std::vector<Sample> t = run(c, 100, V2(0.5, 0.0));
   EXPECT_DOUBLE_EQ(t.back().reading.gimbal_angle_rad(0), -0.0105);
+}
+
+// A resolution so fine that a reading's code (angle / lsb) overflows: 5e-324 rad was accepted
+// and every reading came out infinite, marked valid. Refused with the field, the value and the
+// bound: the full scale (the range, or pi without one) over the 32-bit count's 2^31 - 1 codes.
+TEST(SimulatedGyroPickoff, GivenAResolutionTooFineForTheCountThenRefusedNamingFieldValueAndBound) {
+  struct Case {
+    double lsb, range, bound;
+  };
+  const Case cases[] = {
+      {5e-324, 0.0, 3.141592653589793 / 2147483647.0},  // the smallest double
+      {1e-300, 0.0, 3.141592653589793 / 2147483647.0},
+      {1.4e-9, 0.0, 3.141592653589793 / 2147483647.0},  // just below pi / (2^31 - 1) = 1.463e-9
+      {1e-12, 0.5, 0.5 / 2147483647.0},
+      {2.3e-10, 0.5, 0.5 / 2147483647.0},               // just below 0.5 / (2^31 - 1) = 2.328e-10
+  };
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.lsb);
+    Config c = base_config();
+    c.pickoff.lsb_rad = k.lsb;
+    c.pickoff.range_rad = k.range;
+    Sim sim;
+    const ConfigCheck r = sim.configure(c);
+    EXPECT_EQ(r.status, Status::kOutOfRange);
+    ASSERT_NE(r.field, nullptr);
+    EXPECT_STREQ(r.field, "pickoff.lsb_rad");
+    EXPECT_EQ(r.value, k.lsb);
+    EXPECT_DOUBLE_EQ(r.bound, k.bound);
+    EXPECT_EQ(r.relation, Relation::kBelow);
+    EXPECT_EQ(sim.start(M3::Identity(), V2::Zero()), Status::kNotConfigured);
+    std::array<char, 256> text{};
+    (void)format_refusal(r, "gyro.", text.data(), text.size());
+    EXPECT_NE(std::string(text.data()).find("gyro.pickoff.lsb_rad = "), std::string::npos) << text.data();
+    EXPECT_NE(std::string(text.data()).find("is below"), std::string::npos) << text.data();
+  }
+  // In float the same bound holds (the smallest float, 1.4e-45, overflowed as well).
+  SimulatedGyroConfig<float> f;
+  cast_fields(base_config(), f);
+  f.pickoff.lsb_rad = std::numeric_limits<float>::denorm_min();
+  SimulatedGyro<float> fsim;
+  const ConfigCheck fr = fsim.configure(f);
+  EXPECT_EQ(fr.status, Status::kOutOfRange);
+  ASSERT_NE(fr.field, nullptr);
+  EXPECT_STREQ(fr.field, "pickoff.lsb_rad");
+  EXPECT_EQ(fr.relation, Relation::kBelow);
+}
+
+TEST(SimulatedGyroPickoff, GivenTheFinestResolutionAcceptedThenEveryReadingIsFiniteOnItsCode) {
+  for (const double range : {0.0, 0.5}) {
+    SCOPED_TRACE(range);
+    Config c = base_config();
+    c.pickoff.range_rad = range;
+    c.pickoff.lsb_rad = (range > 0 ? range : 3.141592653589793) / 2147483647.0 * (1 + 1e-12);
+    {
+      Sim sim;
+      ASSERT_TRUE(sim.configure(c).ok());
+    }
+    const std::vector<Sample> s = run(c, 200, V2(0.3, -0.2));
+    for (const Sample& x : s) {
+      ASSERT_TRUE(x.reading.valid);
+      for (int i = 0; i < 2; ++i) {
+        const double v = x.reading.gimbal_angle_rad(i);
+        ASSERT_TRUE(std::isfinite(v)) << v;
+        ASSERT_LE(std::abs(v / c.pickoff.lsb_rad), 2147483647.0);
+        ASSERT_NEAR(v, x.truth(i), c.pickoff.lsb_rad);
+      }
+    }
+  }
+}
+
+// The pickoff's resolution above its range (no code within it) names the range as its bound.
+TEST(SimulatedGyroPickoff, GivenAResolutionCoarserThanTheRangeThenRefusedWithTheRangeAsBound) {
+  Config c = base_config();
+  c.pickoff.range_rad = 0.01;
+  c.pickoff.lsb_rad = 0.02;
+  Sim sim;
+  const ConfigCheck r = sim.configure(c);
+  EXPECT_EQ(r.status, Status::kOutOfRange);
+  ASSERT_NE(r.field, nullptr);
+  EXPECT_STREQ(r.field, "pickoff.lsb_rad");
+  EXPECT_EQ(r.relation, Relation::kAbove);
+  EXPECT_EQ(r.value, 0.02);
+  EXPECT_EQ(r.bound, 0.01);
+  ASSERT_NE(r.bound_name, nullptr);
+  EXPECT_STREQ(r.bound_name, "pickoff.range_rad");
 }
 
 TEST(SimulatedGyroPickoff, GivenBiasThenReadingIsTruthPlusBias) {

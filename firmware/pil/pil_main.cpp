@@ -35,9 +35,10 @@ constexpr std::uint32_t kCoreClockHz = 25000000u;  // MPS2 SYSCLK, also SysTick'
 constexpr std::uint32_t kBaud = 115200u;
 
 // The gyro link: bytes from the host's record of each tick go into rx(); the port's torque
-// frames come out of tx() into the next report.
-gyro::link::FifoLink<256, 64> g_gyro_wire;
-gyro::LinkGyroPort<Scalar> g_port(g_gyro_wire);
+// frames come out of tx() into the next report. The port drains what a tick's record brought
+// (up to 255 bytes, the line's rate; gyro/pil/harness.hpp).
+gyro::pil::GyroWire g_gyro_wire;
+gyro::pil::GyroLinkPort<Scalar> g_port(g_gyro_wire);
 gyro::GyroComponent<Scalar> g_component(g_port);
 gyro::RateGroup g_rate_group;
 gyro_fw::TickTimer g_timer;

@@ -3,7 +3,8 @@
 //
 // Per axis: truth -> first-order lag (exact per tick: y += (1 - exp(-dt/lag)) (x - y)) ->
 // + bias (+ bias-jump faults) -> + white Gaussian noise -> saturation at +-range -> rounding to
-// the nearest lsb (and, when both are set, clamped to the largest code within the range).
+// the nearest lsb (and, when both are set, clamped to the largest code within the range). The
+// codes fit a signed 32-bit count (check(): lsb_rad >= range / (2^31 - 1)).
 // Sequence +1 per conversion, starting at 1 for the power-up conversion. Faults (from the
 // tick's ActiveFaults): stuck converters hold their output, a dropout repeats the whole
 // reading, invalid readings carry NaN angles (valid bit kept for one axis, cleared for both).
@@ -50,11 +51,30 @@ struct FieldTable<PickoffModel<T>> {
   }
 };
 
+// The converter's code is a signed 32-bit count: the largest reading (the range, or without one
+// the readout's widest angle, the yaw azimuth's pi) over lsb_rad must fit it. A finer step
+// made the code (reading / lsb_rad) overflow to infinity in the conversion: at 5e-324 rad every
+// reading came out infinite and marked valid. At the bound the codes of a reading, and the
+// range over lsb_rad, stay below 2^31 in float and double.
+inline constexpr double kPickoffMaxCode = 2147483647.0;               // 2^31 - 1
+inline constexpr double kPickoffReadoutFullScaleRad = 3.141592653589793;  // without a range
+
 template <typename T>
 [[nodiscard]] ConfigCheck check(const PickoffModel<T>& p) noexcept {
   const FieldRefusal r = first_refusal<RealFields>(p);
   if (r.status != Status::kOk) return r.check;
-  if (p.range_rad > T(0) && p.lsb_rad > p.range_rad) return {Status::kOutOfRange, "pickoff.lsb_rad"};
+  const double lsb = static_cast<double>(p.lsb_rad), range = static_cast<double>(p.range_rad);
+  if (range > 0.0 && lsb > range) {
+    return refuse_above("pickoff.lsb_rad", lsb, range, "pickoff.range_rad",
+                        "a converter has at least one code within its range");
+  }
+  const double full_scale = range > 0.0 ? range : kPickoffReadoutFullScaleRad;
+  const double finest = full_scale / kPickoffMaxCode;
+  if (lsb > 0.0 && lsb < finest) {
+    return refuse_below("pickoff.lsb_rad", lsb, finest,
+                        range > 0.0 ? "pickoff.range_rad over 2^31 - 1 codes" : "pi rad over 2^31 - 1 codes",
+                        "the code of a reading (angle / lsb_rad) must fit the converter's signed 32-bit count");
+  }
   return {};
 }
 

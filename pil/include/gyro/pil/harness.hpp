@@ -42,6 +42,7 @@
 
 #include "gyro/component_types.hpp"
 #include "gyro/gyro_model.hpp"  // ConfigCheck
+#include "gyro/link/byte_fifo.hpp"
 #include "gyro/link/frame.hpp"
 #include "gyro/link/frame_decoder.hpp"
 #include "gyro/link/link_gyro_port.hpp"
@@ -51,6 +52,23 @@
 namespace gyro::pil {
 
 inline constexpr std::uint16_t kProtocolVersion = 2;
+
+// The target's gyro line. Its rate is set by the tick records: the bytes of a tick ride in its
+// tick_in, counted in one byte, so the line delivers at most 255 bytes a tick (gyro_sil --pil
+// refuses a tick with more). The receive FIFO holds a whole tick's delivery, and the port
+// drains up to the FIFO's size in a read: every read empties what the line brought, and a
+// noisy tick cannot leave a backlog that grows until the FIFO drops bytes. The work a read
+// does stays bounded: 256 bytes through the decoder. (A read of 4 frames, the port's default
+// of 144 bytes in double, 96 in float, fell behind 120 bytes of noise a tick plus the frame:
+// on the M7, 10 readings of 3,001 arrived and the component latched a fault.)
+inline constexpr std::size_t kGyroLineBytesPerTick = 255;
+inline constexpr std::size_t kGyroRxBytes = 256;
+inline constexpr std::size_t kGyroTxBytes = 64;  // one torque frame a step (23 bytes in double)
+static_assert(kGyroRxBytes >= kGyroLineBytesPerTick, "the receive FIFO holds a tick's bytes");
+using GyroWire = link::FifoLink<kGyroRxBytes, kGyroTxBytes>;
+template <typename T>
+using GyroLinkPort = LinkGyroPort<T, kGyroRxBytes>;
+static_assert(link::kGyroLinkFrameBytes<double> <= kGyroTxBytes, "room for a torque frame");
 
 inline constexpr std::uint8_t kHello = 0x10u;
 inline constexpr std::uint8_t kConfig = 0x11u;

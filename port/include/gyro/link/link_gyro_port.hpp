@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -42,6 +43,12 @@ struct LinkPortCounters {
   std::uint32_t torque_refused{};  // torque commands refused (kBusError)
 };
 
+// kMaxBytesPerRead bounds a read's work. It must be at least the bytes the line can deliver
+// in a tick (its bits per second / 10 bits a byte / ticks per second, rounded up: frames and
+// noise alike), and the receive buffer must hold that much: a port that reads less falls
+// behind, and once its buffer is full the frames are lost. The default, 4 frames, suits a line
+// that carries a frame or two a tick; the PIL image's line carries up to 255 bytes a tick and
+// its port reads 256 (gyro/pil/harness.hpp).
 template <typename T, std::size_t kMaxBytesPerRead = 4 * link::kGyroLinkFrameBytes<T>>
 class LinkGyroPort final : public GyroPort<T> {
  public:

@@ -50,7 +50,9 @@ py::array_t<T> to_array(const Eigen::Matrix<T, R, C>& m) {
 
 namespace array_detail {
 
-inline std::string type_name(py::handle v) { return py::str(py::type::handle_of(v).attr("__name__")).cast<std::string>(); }
+inline std::string type_name(py::handle v) {
+  return py::str(py::type::handle_of(v).attr("__name__")).cast<std::string>();
+}
 
 inline std::string shape_text(const py::array& a) {
   std::string s = "(";
@@ -112,7 +114,9 @@ void check_representable(double d, const char* name) {
 // array as it is, anything else through numpy.asarray. TypeError naming `name` otherwise.
 inline py::array real_array(py::handle v, const char* name) {
   using namespace array_detail;
-  if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v)) refuse_kind(name, type_name(v) + " " + py::repr(v).cast<std::string>());
+  if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v)) {
+    refuse_kind(name, type_name(v) + " " + py::repr(v).cast<std::string>());
+  }
   // NumPy reads [True, 2.0] as numbers: a bool among a (nested) list's or tuple's items is
   // refused here.
   if (holds_bool(v)) refuse_kind(name, "a " + type_name(v) + " holding a bool");
@@ -223,8 +227,10 @@ M real_matrix(py::handle v, const char* name) {
   const CArray<T> a = real_array_of<T>(v, name);
   const bool ok = C == 1 ? (a.ndim() == 1 && a.shape(0) == R) : (a.ndim() == 2 && a.shape(0) == R && a.shape(1) == C);
   if (!ok) {
-    const std::string need = C == 1 ? "(" + std::to_string(R) + ",)" : "(" + std::to_string(R) + ", " + std::to_string(C) + ")";
-    throw py::value_error(std::string(name) + ": expected shape " + need + ", got shape " + array_detail::shape_text(a));
+    const std::string need =
+        C == 1 ? "(" + std::to_string(R) + ",)" : "(" + std::to_string(R) + ", " + std::to_string(C) + ")";
+    throw py::value_error(std::string(name) + ": expected shape " + need + ", got shape " +
+                          array_detail::shape_text(a));
   }
   const T* d = a.data();
   for (int r = 0; r < R; ++r) {

@@ -151,7 +151,8 @@ py::object propagate_any(const py::object& params, const py::object& dt, const p
     const CArray<T> p = real_array_of<T>(params, "params");
     const std::optional<py::ssize_t> n = batch_rows<T>(p, 4, "params");
     if (!n || !rows || *n != *rows) {
-      throw py::value_error("params: expected a RotorParameters or an (n, 4) array for a batch of n states, got shape " +
+      throw py::value_error("params: expected a RotorParameters or an (n, 4) array for a batch of n states, "
+                            "got shape " +
                             array_detail::shape_text(p) + " for " + rows_text(rows));
     }
     prm_per_row = true;
@@ -164,7 +165,8 @@ py::object propagate_any(const py::object& params, const py::object& dt, const p
   const bool dt_per_row = steps.ndim() == 1 && rows && steps.shape(0) == *rows;
   if (!(steps.ndim() == 0 || dt_per_row)) {
     throw py::value_error("dt: expected a number or shape (" + (rows ? std::to_string(*rows) : std::string("n")) +
-                          ",), one per state, got shape " + array_detail::shape_text(steps) + " for " + rows_text(rows));
+                          ",), one per state, got shape " + array_detail::shape_text(steps) + " for " +
+                          rows_text(rows));
   }
   const T* dts = steps.data();
   return run_rows<T>(state, rows, return_status, "propagate", [&](py::ssize_t i, RotorState<T>& s) {

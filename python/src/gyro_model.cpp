@@ -177,10 +177,14 @@ void bind_gyro_model(py::module_& m) {
   m.attr("FLAG_GIMBAL_LIMIT") = static_cast<unsigned>(kFlagGimbalLimit);
   m.attr("FLAG_SMALL_ANGLE") = static_cast<unsigned>(kFlagSmallAngle);
   m.def(
-      "frame_rotation_y", [](const py::object& a) { return to_array(Eigen::Matrix3d(frame_rotation_y(real_scalar(a, "angle")))); }, py::arg("angle"),
+      "frame_rotation_y",
+      [](const py::object& a) { return to_array(Eigen::Matrix3d(frame_rotation_y(real_scalar(a, "angle")))); },
+      py::arg("angle"),
       "The passive rotation of a body turning by `angle` about its own y axis: R_new = R_y(angle) @ R_old.");
   m.def(
-      "frame_rotation_z", [](const py::object& a) { return to_array(Eigen::Matrix3d(frame_rotation_z(real_scalar(a, "angle")))); }, py::arg("angle"),
+      "frame_rotation_z",
+      [](const py::object& a) { return to_array(Eigen::Matrix3d(frame_rotation_z(real_scalar(a, "angle")))); },
+      py::arg("angle"),
       "The passive rotation of a body turning by `angle` about its own z axis: R_new = R_z(angle) @ R_old.");
 }
 

@@ -123,7 +123,10 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
   std::optional<sil::Precision> p;
   if (precision) {
     p = sil::parse_precision(*precision);
-    if (!p) throw py::value_error("precision: expected 'float' or 'double', got " + py::repr(py::str(*precision)).cast<std::string>());
+    if (!p) {
+      throw py::value_error("precision: expected 'float' or 'double', got " +
+                            py::repr(py::str(*precision)).cast<std::string>());
+    }
   }
   std::optional<std::uint64_t> ticks;
   if (!ticks_arg.is_none()) ticks = whole_number(ticks_arg, "ticks", 1, kMaxTicks);
@@ -146,9 +149,10 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
     // returned take less (8 bytes a number against the CSV's 16 or more characters).
     const std::uint64_t bound = sil::csv_size_bound(s);
     if (bound > max_output_bytes) {
-      throw py::value_error("max_output_bytes: the run's output could take up to " + std::to_string(bound) + " bytes (" +
-                            std::to_string(s.run.ticks + 1) + " rows of " + std::to_string(s.run.ticks == 0 ? 0 : sil::csv_row_bytes_bound(s.run.ticks)) +
-                            " bytes), more than the limit of " + std::to_string(max_output_bytes) +
+      throw py::value_error("max_output_bytes: the run's output could take up to " + std::to_string(bound) +
+                            " bytes (" + std::to_string(s.run.ticks + 1) + " rows of " +
+                            std::to_string(sil::csv_row_bytes_bound(s.run.ticks)) + " bytes), more than the limit of " +
+                            std::to_string(max_output_bytes) +
                             " (raise it with max_output_bytes=..., or run fewer ticks)");
     }
     sil::RunOptions options;

@@ -63,7 +63,8 @@ def test_given_the_largest_thread_count_when_run_then_the_runs_are_done(source_d
 
 def test_given_a_run_count_out_of_bounds_when_run_then_error_names_runs(source_dir):
     doc = {"base": "scenarios/seeker_slew.json", "runs": 4, "seed": 1}
-    with pytest.raises(ValueError, match=r"^runs: expected a whole number from 1 to the campaign's run count 4, got 5$"):
+    with pytest.raises(ValueError,
+                       match=r"^runs: expected a whole number from 1 to the campaign's run count 4, got 5$"):
         gyro.run_campaign(doc, runs=5, base_dir=source_dir)
     with pytest.raises(TypeError, match=r"^runs: expected a whole number from 1 to 1000000, got bool True$"):
         gyro.run_campaign(doc, runs=True, base_dir=source_dir)

@@ -12,12 +12,14 @@ See docs/python.md.
 
 from . import errors, report_sample
 from ._gyro import (
+    DEFAULT_MAX_OUTPUT_BYTES,
     FLAG_GIMBAL_LIMIT,
     FLAG_SMALL_ANGLE,
     GimbalPlant,
     GimbalPlantF32,
     GyroModel,
     GyroModelF32,
+    MAX_THREADS,
     RotorParameters,
     Status,
     Transition,
@@ -39,7 +41,7 @@ from .errors import ConfigError, GyroError, RunError, ScenarioError, StatusError
 from .results import CampaignRun, SilRun
 
 __all__ = [
-    "FLAG_GIMBAL_LIMIT", "FLAG_SMALL_ANGLE", "GimbalPlant", "GimbalPlantF32", "GyroModel", "GyroModelF32",
+    "DEFAULT_MAX_OUTPUT_BYTES", "MAX_THREADS", "FLAG_GIMBAL_LIMIT", "FLAG_SMALL_ANGLE", "GimbalPlant", "GimbalPlantF32", "GyroModel", "GyroModelF32",
     "RotorParameters", "Status", "Transition", "TransitionF32", "advance", "angular_momentum",
     "component_flag_names", "compute_modes", "frame_rotation_y", "frame_rotation_z", "make_transition",
     "propagate", "sil_columns", "status_text", "steady_precession_rate", "run_sil", "run_campaign",
@@ -47,15 +49,19 @@ __all__ = [
 ]
 
 
-def run_sil(scenario, *, precision=None, ticks=None):
+def run_sil(scenario, *, precision=None, ticks=None, max_output_bytes=DEFAULT_MAX_OUTPUT_BYTES):
     """Runs a SIL scenario as gyro_sil does and returns its time history.
 
     scenario: a scenario file (str or os.PathLike) or a dict with a scenario's contents
     (docs/scenarios.md). precision: 'float' or 'double' overrides run.precision; ticks
-    overrides the run's length. Returns a SilRun (columns keyed by the CSV's names, and the
-    component's telemetry). Raises ScenarioError (naming the JSON field) or RunError.
+    overrides the run's length. max_output_bytes: a run whose output could be larger (gyro_sil's
+    bound of its CSV, (ticks + 1) rows at their widest) is refused with a ValueError before it
+    starts; the default is gyro_sil's --max-output-bytes default, DEFAULT_MAX_OUTPUT_BYTES (1 GiB).
+    Returns a SilRun (columns keyed by the CSV's names, and the component's telemetry).
+    Raises ScenarioError (naming the JSON field) or RunError. Ctrl-C raises KeyboardInterrupt
+    within about 20 ms (and one tick).
     """
-    columns, telemetry = _run_sil(scenario, precision, ticks)
+    columns, telemetry = _run_sil(scenario, precision, ticks, max_output_bytes)
     return SilRun(columns=columns, telemetry=telemetry)
 
 
@@ -64,8 +70,10 @@ def run_campaign(campaign, *, runs=None, threads=1, base_dir=None):
 
     campaign: a campaign file or a dict (docs/campaigns.md); a dict's base scenario path is
     read relative to base_dir (default: the current directory). runs: run only the first
-    `runs` runs (their rows are those of the full campaign). threads: worker threads.
-    Returns a CampaignRun. Raises ScenarioError for a refused campaign.
+    `runs` runs (their rows are those of the full campaign). threads: worker threads, 1 to
+    MAX_THREADS (1024, gyro_campaign -j's bound). Returns a CampaignRun. Raises ScenarioError
+    for a refused campaign. Ctrl-C raises KeyboardInterrupt once the runs under way have
+    finished (a run's work at most); no new run starts.
     """
     header, columns = _run_campaign(campaign, runs, threads, None if base_dir is None else str(base_dir))
     return CampaignRun(header=list(header), columns=columns)

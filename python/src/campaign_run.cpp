@@ -16,7 +16,9 @@
 #include <utility>
 #include <vector>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
+#include "interrupt.hpp"
 #include "campaign_error.hpp"
 #include "campaign_file.hpp"
 #include "errors.hpp"
@@ -33,12 +35,16 @@ namespace {
 
 using campaign::Campaign;
 
-// The table's rows in run order, as runs.csv holds them.
+// The table's rows in run order, as runs.csv holds them. Called without the GIL; between
+// collections (every kSignalCheckPeriod) it takes the GIL to run Python's signal handlers, and
+// when one raises it stops the pool: no new run starts, the runs under way finish (a run's
+// work at most, on each worker) and Interrupted is thrown once they are joined.
 campaign::RunTable run_all(const Campaign& c, unsigned threads) {
   std::vector<std::pair<std::uint64_t, std::string>> rows;
   campaign::RunPool pool(c, 0, c.runs, threads);
   while (!pool.done()) {
-    for (std::string& r : pool.take(std::chrono::milliseconds(200))) {
+    if (python_signal_raised()) throw Interrupted{};  // ~RunPool stops and joins the workers
+    for (std::string& r : pool.take(kSignalCheckPeriod)) {
       const std::uint64_t k = campaign::row_run_index(r).value_or(std::numeric_limits<std::uint64_t>::max());
       rows.emplace_back(k, std::move(r));
     }
@@ -77,9 +83,12 @@ py::dict table_columns(const campaign::RunTable& t) {
   return d;
 }
 
-py::tuple run_campaign(const py::object& source, const std::optional<std::uint64_t>& runs, unsigned threads,
+py::tuple run_campaign(const py::object& source, const py::object& runs_arg, const py::object& threads_arg,
                        const std::optional<std::string>& base_dir) {
-  if (threads == 0) throw py::value_error("threads must be >= 1");
+  // gyro_campaign -j's bound (one constant, campaign::kMaxThreads), checked before any work.
+  const auto threads = static_cast<unsigned>(whole_number(threads_arg, "threads", 1, campaign::kMaxThreads));
+  std::optional<std::uint64_t> runs;
+  if (!runs_arg.is_none()) runs = whole_number(runs_arg, "runs", 1, campaign::kMaxRuns);
   const DocumentSource src = document_source(source, "campaign");
   py::dict columns;
   std::vector<std::string> header;
@@ -89,7 +98,10 @@ py::tuple run_campaign(const py::object& source, const std::optional<std::uint64
                                                      base_dir ? std::filesystem::path(*base_dir)
                                                               : std::filesystem::current_path());
     if (runs) {
-      if (*runs == 0 || *runs > c.runs) throw py::value_error("runs must be between 1 and the campaign's run count");
+      if (*runs > c.runs) {
+        throw py::value_error("runs: expected a whole number from 1 to the campaign's run count " +
+                              std::to_string(c.runs) + ", got " + std::to_string(*runs));
+      }
       c.runs = *runs;  // the first runs: each run's row depends only on (campaign, index)
     }
     std::optional<campaign::RunTable> table;
@@ -99,6 +111,8 @@ py::tuple run_campaign(const py::object& source, const std::optional<std::uint64
     }
     header = table->header();
     columns = table_columns(*table);
+  } catch (const Interrupted&) {
+    throw py::error_already_set();  // the KeyboardInterrupt (or whatever the handler raised)
   } catch (const campaign::CampaignError& e) {
     raise_python("ScenarioError", py::make_tuple(std::string(e.what()), e.field(), e.file()));
   } catch (const sil::ScenarioError& e) {
@@ -110,7 +124,8 @@ py::tuple run_campaign(const py::object& source, const std::optional<std::uint64
 }  // namespace
 
 void bind_campaign_run(py::module_& m) {
-  m.def("_run_campaign", &run_campaign, py::arg("campaign"), py::arg("runs") = py::none(), py::arg("threads") = 1u,
+  m.attr("MAX_THREADS") = campaign::kMaxThreads;
+  m.def("_run_campaign", &run_campaign, py::arg("campaign"), py::arg("runs") = py::none(), py::arg("threads") = 1,
         py::arg("base_dir") = py::none(),
         "(header, columns) of a campaign's per-run table; gyro.run_campaign wraps it in a CampaignRun.");
 }

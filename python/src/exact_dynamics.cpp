@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,10 +49,13 @@ struct BatchOutcome {
   Status first_status{Status::kOk};
 };
 
-// One step of every row; `step(i, state)` returns the row's Status.
+// One step of every row; `step(i, state)` returns the row's Status. `rows` nullopt: a single
+// state (shape (4,)); else a batch of that many rows, none included (an empty (0, 4) batch
+// gives an empty (0, 4) result and an empty status array).
 template <typename T, typename Step>
-py::object run_rows(const CArray<T>& states, py::ssize_t rows, bool return_status, const char* what, Step&& step) {
-  if (rows == 0) {  // a single state
+py::object run_rows(const CArray<T>& states, std::optional<py::ssize_t> batch, bool return_status, const char* what,
+                    Step&& step) {
+  if (!batch) {  // a single state
     RotorState<T> s = state_of(states.data());
     const Status st = step(0, s);
     if (return_status) {
@@ -64,10 +68,11 @@ py::object run_rows(const CArray<T>& states, py::ssize_t rows, bool return_statu
     store(s, out.mutable_data());
     return out;
   }
+  const py::ssize_t rows = *batch;
   py::array_t<T> out({rows, py::ssize_t{4}});
   py::array_t<std::uint8_t> status(rows);
   BatchOutcome outcome;
-  {
+  if (rows > 0) {
     const T* in = states.data();
     T* o = out.mutable_data();
     std::uint8_t* so = status.mutable_data();
@@ -101,18 +106,30 @@ struct Torques {
   }
 };
 
-template <typename T>
-Torques<T> torques_for(const CArray<T>& torque, py::ssize_t rows) {
-  const py::ssize_t n = batch_rows<T>(torque, 2, "torque");
-  if (n != 0 && n != rows) throw py::value_error("torque must have shape (2,) or one row per state");
-  if (n != 0 && rows == 0) throw py::value_error("a batch of torques needs a batch of states");
-  return {torque.data(), n != 0};
+std::string rows_text(std::optional<py::ssize_t> rows) {
+  return rows ? std::to_string(*rows) + " states" : "a single state";
 }
 
 template <typename T>
-py::object advance_any(const RotorTransition<T>& tr, const CArray<T>& state, const CArray<T>& torque,
+Torques<T> torques_for(const CArray<T>& torque, std::optional<py::ssize_t> rows) {
+  const std::optional<py::ssize_t> n = batch_rows<T>(torque, 2, "torque");
+  if (n && !rows) {
+    throw py::value_error("torque: a batch of " + std::to_string(*n) + " torques needs a batch of states, got " +
+                          rows_text(rows));
+  }
+  if (n && *n != *rows) {
+    throw py::value_error("torque: expected shape (2,) or (" + std::to_string(*rows) + ", 2), one row per state, got " +
+                          std::to_string(*n) + " rows");
+  }
+  return {torque.data(), n.has_value()};
+}
+
+template <typename T>
+py::object advance_any(const RotorTransition<T>& tr, const py::object& state_arg, const py::object& torque_arg,
                        bool return_status) {
-  const py::ssize_t rows = batch_rows<T>(state, 4, "state");
+  const CArray<T> state = real_array_of<T>(state_arg, "state");
+  const CArray<T> torque = real_array_of<T>(torque_arg, "torque");
+  const std::optional<py::ssize_t> rows = batch_rows<T>(state, 4, "state");
   const Torques<T> tq = torques_for(torque, rows);
   return run_rows<T>(state, rows, return_status, "advance",
                      [&](py::ssize_t i, RotorState<T>& s) { return advance(tr, tq.at(i), s); });
@@ -120,33 +137,56 @@ py::object advance_any(const RotorTransition<T>& tr, const CArray<T>& state, con
 
 // Parameters and steps per row: `params` (n, 4) of (J1, J2, f, H) and `dt` (n,), or one of each.
 template <typename T>
-py::object propagate_any(const py::object& params, const py::object& dt, const CArray<T>& state,
-                         const CArray<T>& torque, bool return_status) {
-  const py::ssize_t rows = batch_rows<T>(state, 4, "state");
+py::object propagate_any(const py::object& params, const py::object& dt, const py::object& state_arg,
+                         const py::object& torque_arg, bool return_status) {
+  const CArray<T> state = real_array_of<T>(state_arg, "state");
+  const CArray<T> torque = real_array_of<T>(torque_arg, "torque");
+  const std::optional<py::ssize_t> rows = batch_rows<T>(state, 4, "state");
   const Torques<T> tq = torques_for(torque, rows);
   std::vector<RotorParameters<T>> prm;
+  bool prm_per_row = false;
   if (py::isinstance<RotorParameters<double>>(params)) {
     prm.push_back(cast_params<T>(params.cast<RotorParameters<double>>()));
   } else {
-    const CArray<T> p = py::cast<CArray<T>>(params);
-    const py::ssize_t n = batch_rows<T>(p, 4, "params");
-    if (n != rows || n == 0) throw py::value_error("params must be a RotorParameters or an (n, 4) array, n states");
-    for (py::ssize_t i = 0; i < n; ++i) {
+    const CArray<T> p = real_array_of<T>(params, "params");
+    const std::optional<py::ssize_t> n = batch_rows<T>(p, 4, "params");
+    if (!n || !rows || *n != *rows) {
+      throw py::value_error("params: expected a RotorParameters or an (n, 4) array for a batch of n states, "
+                            "got shape " +
+                            array_detail::shape_text(p) + " for " + rows_text(rows));
+    }
+    prm_per_row = true;
+    for (py::ssize_t i = 0; i < *n; ++i) {
       const T* r = p.data() + 4 * i;
       prm.push_back({r[0], r[1], r[2], r[3]});
     }
   }
-  const CArray<T> steps = py::cast<CArray<T>>(dt);
-  if (!(steps.ndim() == 0 || (steps.ndim() == 1 && steps.shape(0) == (rows == 0 ? 1 : rows)))) {
-    throw py::value_error("dt must be a number or one per state");
+  const CArray<T> steps = real_array_of<T>(dt, "dt");
+  const bool dt_per_row = steps.ndim() == 1 && rows && steps.shape(0) == *rows;
+  if (!(steps.ndim() == 0 || dt_per_row)) {
+    throw py::value_error("dt: expected a number or shape (" + (rows ? std::to_string(*rows) : std::string("n")) +
+                          ",), one per state, got shape " + array_detail::shape_text(steps) + " for " +
+                          rows_text(rows));
   }
-  const bool dt_per_row = steps.ndim() == 1 && rows != 0;
-  const bool prm_per_row = prm.size() > 1;
   const T* dts = steps.data();
   return run_rows<T>(state, rows, return_status, "propagate", [&](py::ssize_t i, RotorState<T>& s) {
     const std::size_t k = static_cast<std::size_t>(i);
     return propagate(prm[prm_per_row ? k : 0], dts[dt_per_row ? k : 0], tq.at(i), s);
   });
+}
+
+// RotorParameters' fields as properties whose setter checks the value's kind.
+inline constexpr char kPitchInertia[] = "pitch_inertia";
+inline constexpr char kYawInertia[] = "yaw_inertia";
+inline constexpr char kFriction[] = "friction";
+inline constexpr char kAngularMomentum[] = "angular_momentum";
+template <double RotorParameters<double>::*M>
+double get_field(const RotorParameters<double>& p) {
+  return p.*M;
+}
+template <double RotorParameters<double>::*M, const char* Name>
+void set_field(RotorParameters<double>& p, const py::object& v) {
+  p.*M = real_scalar(v, Name);
 }
 
 bool wants_float(const py::object& dtype) {
@@ -183,7 +223,7 @@ void bind_transition(py::module_& m, const char* name, const char* doc) {
       });
   m.def(
       "advance",
-      [](const RotorTransition<T>& tr, const CArray<T>& state, const CArray<T>& torque, bool return_status) {
+      [](const RotorTransition<T>& tr, const py::object& state, const py::object& torque, bool return_status) {
         return advance_any<T>(tr, state, torque, return_status);
       },
       py::arg("transition"), py::arg("state"), py::arg("torque"), py::kw_only(), py::arg("return_status") = false,
@@ -199,24 +239,34 @@ void bind_transition(py::module_& m, const char* name, const char* doc) {
 void bind_exact_dynamics(py::module_& m) {
   py::class_<RotorParameters<double>>(m, "RotorParameters",
                                       "The linear rotor model's parameters (report eqs 1a, 1b), any consistent units.")
-      .def(py::init([](double pitch_inertia, double yaw_inertia, double friction, double angular_momentum) {
-             return RotorParameters<double>{pitch_inertia, yaw_inertia, friction, angular_momentum};
+      .def(py::init([](const py::object& pitch_inertia, const py::object& yaw_inertia, const py::object& friction,
+                       const py::object& angular_momentum) {
+             return RotorParameters<double>{real_scalar(pitch_inertia, "pitch_inertia"),
+                                            real_scalar(yaw_inertia, "yaw_inertia"), real_scalar(friction, "friction"),
+                                            real_scalar(angular_momentum, "angular_momentum")};
            }),
            py::arg("pitch_inertia"), py::arg("yaw_inertia"), py::arg("friction") = 0.0,
            py::arg("angular_momentum") = 0.0,
            "J1 (pitch gimbal axis), J2 (yaw gimbal axis), viscous friction f, spin angular momentum H.")
       .def_static(
           "from_spin",
-          [](double pitch_inertia, double yaw_inertia, double friction, double spin_hz, double spin_inertia) {
-            return RotorParameters<double>{pitch_inertia, yaw_inertia, friction,
-                                           angular_momentum(spin_hz, spin_inertia)};
+          [](const py::object& pitch_inertia, const py::object& yaw_inertia, const py::object& friction,
+             const py::object& spin_hz, const py::object& spin_inertia) {
+            return RotorParameters<double>{
+                real_scalar(pitch_inertia, "pitch_inertia"), real_scalar(yaw_inertia, "yaw_inertia"),
+                real_scalar(friction, "friction"),
+                angular_momentum(real_scalar(spin_hz, "spin_hz"), real_scalar(spin_inertia, "spin_inertia"))};
           },
           py::arg("pitch_inertia"), py::arg("yaw_inertia"), py::arg("friction"), py::arg("spin_hz"),
           py::arg("spin_inertia"), "The parameters with H = 2 pi spin_hz J0.")
-      .def_readwrite("pitch_inertia", &RotorParameters<double>::pitch_inertia, "J1")
-      .def_readwrite("yaw_inertia", &RotorParameters<double>::yaw_inertia, "J2")
-      .def_readwrite("friction", &RotorParameters<double>::friction, "f")
-      .def_readwrite("angular_momentum", &RotorParameters<double>::angular_momentum, "H")
+      .def_property("pitch_inertia", &get_field<&RotorParameters<double>::pitch_inertia>,
+                    &set_field<&RotorParameters<double>::pitch_inertia, kPitchInertia>, "J1")
+      .def_property("yaw_inertia", &get_field<&RotorParameters<double>::yaw_inertia>,
+                    &set_field<&RotorParameters<double>::yaw_inertia, kYawInertia>, "J2")
+      .def_property("friction", &get_field<&RotorParameters<double>::friction>,
+                    &set_field<&RotorParameters<double>::friction, kFriction>, "f")
+      .def_property("angular_momentum", &get_field<&RotorParameters<double>::angular_momentum>,
+                    &set_field<&RotorParameters<double>::angular_momentum, kAngularMomentum>, "H")
       .def(
           "as_array",
           [](const RotorParameters<double>& p) {
@@ -234,12 +284,14 @@ void bind_exact_dynamics(py::module_& m) {
 
   m.def(
       "make_transition",
-      [](const RotorParameters<double>& p, double dt, const py::object& dtype) -> py::object {
+      [](const RotorParameters<double>& p, const py::object& dt_arg, const py::object& dtype) -> py::object {
         if (wants_float(dtype)) {
+          const float dt = real_scalar<float>(dt_arg, "dt");
           RotorTransition<float> tr;
-          raise_if_failed(make_transition(cast_params<float>(p), static_cast<float>(dt), tr), "make_transition");
+          raise_if_failed(make_transition(cast_params<float>(p), dt, tr), "make_transition");
           return py::cast(tr);
         }
+        const double dt = real_scalar(dt_arg, "dt");
         RotorTransition<double> tr;
         raise_if_failed(make_transition(p, dt, tr), "make_transition");
         return py::cast(tr);
@@ -253,12 +305,8 @@ void bind_exact_dynamics(py::module_& m) {
       "propagate",
       [](const py::object& params, const py::object& dt, const py::object& state, const py::object& torque,
          bool return_status) -> py::object {
-        if (is_float32(state)) {
-          return propagate_any<float>(params, dt, py::cast<CArray<float>>(state), py::cast<CArray<float>>(torque),
-                                      return_status);
-        }
-        return propagate_any<double>(params, dt, py::cast<CArray<double>>(state), py::cast<CArray<double>>(torque),
-                                     return_status);
+        if (is_float32(state)) return propagate_any<float>(params, dt, state, torque, return_status);
+        return propagate_any<double>(params, dt, state, torque, return_status);
       },
       py::arg("params"), py::arg("dt"), py::arg("state"), py::arg("torque"), py::kw_only(),
       py::arg("return_status") = false,
@@ -289,7 +337,8 @@ void bind_exact_dynamics(py::module_& m) {
 
   m.def(
       "steady_precession_rate",
-      [](const RotorParameters<double>& p, const Eigen::Vector2d& torque) {
+      [](const RotorParameters<double>& p, const py::object& torque_arg) {
+        const Eigen::Vector2d torque = real_matrix<Eigen::Vector2d>(torque_arg, "torque");
         Eigen::Vector2d r;
         raise_if_failed(steady_precession_rate(p, torque, r), "steady_precession_rate");
         return to_array(r);
@@ -298,7 +347,10 @@ void bind_exact_dynamics(py::module_& m) {
       "The steady precession (theta', psi') under a constant torque (report eq 11, k5 and k6).");
 
   m.def(
-      "angular_momentum", [](double spin_hz, double spin_inertia) { return angular_momentum(spin_hz, spin_inertia); },
+      "angular_momentum",
+      [](const py::object& spin_hz, const py::object& spin_inertia) {
+        return angular_momentum(real_scalar(spin_hz, "spin_hz"), real_scalar(spin_inertia, "spin_inertia"));
+      },
       py::arg("spin_hz"), py::arg("spin_inertia"), "H = 2 pi spin_hz J0.");
 }
 

@@ -49,9 +49,9 @@ void bind_plant(py::module_& m, const char* name, const char* doc) {
   using V2 = Vector2<T>;
   using V3 = Vector3<T>;
   py::class_<H>(m, name, doc)
-      .def(py::init([](T tick_s, const py::object& config, const py::kwargs& fields) {
+      .def(py::init([](const py::object& tick_s, const py::object& config, const py::kwargs& fields) {
              H h;
-             configure_plant(h, tick_s, config, fields);
+             configure_plant(h, real_scalar<T>(tick_s, "tick_s"), config, fields);
              return h;
            }),
            py::arg("tick_s"), py::arg("config") = py::none(),
@@ -59,22 +59,35 @@ void bind_plant(py::module_& m, const char* name, const char* doc) {
            "GimbalPlantConfig: spin_inertia, rotor_transverse_inertia, inner_gimbal_inertia (3 numbers),\n"
            "..., spin_drive='motor'|'free', torque_axes='gimbal'|'gyro', the envelope max_*). A refusal\n"
            "raises gyro.ConfigError naming the field (tick_s included).")
-      .def("configure", &configure_plant<T>, py::arg("tick_s"), py::arg("config") = py::none(),
+      .def(
+          "configure",
+          [](H& h, const py::object& tick_s, const py::object& config, const py::kwargs& fields) {
+            configure_plant(h, real_scalar<T>(tick_s, "tick_s"), config, fields);
+          },
+          py::arg("tick_s"), py::arg("config") = py::none(),
            "Configures again (as the constructor); the plant waits for start().")
       .def(
           "start",
-          [](H& h, const V2& angle, const V2& rate, T spin_hz, const V3& body_rate, const V3& force) {
-            const BodyState<T> b = body_of(body_rate, force);
+          [](H& h, const py::object& angle_arg, const py::object& rate_arg, const py::object& spin_hz_arg,
+             const py::object& body_rate, const py::object& force) {
+            const V2 angle = matrix_or_zero<V2>(angle_arg, "gimbal_angle");
+            const V2 rate = matrix_or_zero<V2>(rate_arg, "gimbal_rate");
+            const T spin_hz = real_scalar<T>(spin_hz_arg, "spin_hz");
+            const BodyState<T> b =
+                body_of(matrix_or_zero<V3>(body_rate, "body_rate"), matrix_or_zero<V3>(force, "specific_force"));
             raise_if_failed(h.plant.start({angle, rate, spin_hz}, b), "GimbalPlant.start");
             h.body = b;
           },
-          py::arg("gimbal_angle") = V2(V2::Zero()), py::arg("gimbal_rate") = V2(V2::Zero()), py::kw_only(),
-          py::arg("spin_hz"), py::arg("body_rate") = V3(V3::Zero()), py::arg("specific_force") = V3(V3::Zero()),
+          py::arg("gimbal_angle") = py::none(), py::arg("gimbal_rate") = py::none(), py::kw_only(),
+          py::arg("spin_hz"), py::arg("body_rate") = py::none(), py::arg("specific_force") = py::none(),
           "Sets the joint angles (pitch, yaw) and rates relative to the carriers, the spin relative to the\n"
           "inner gimbal (Hz) and the body's rate (p, q, r) and specific force at t0. Raises gyro.StatusError.")
       .def(
           "step",
-          [](H& h, const V2& torque, const std::optional<V3>& body_rate, const std::optional<V3>& force) {
+          [](H& h, const py::object& torque_arg, const py::object& body_rate_arg, const py::object& force_arg) {
+            const V2 torque = real_matrix<V2>(torque_arg, "torque");
+            const std::optional<V3> body_rate = optional_matrix<V3>(body_rate_arg, "body_rate");
+            const std::optional<V3> force = optional_matrix<V3>(force_arg, "specific_force");
             const BodyState<T> end = body_of(body_rate ? *body_rate : h.body.rate_rad_s,
                                              force ? *force : h.body.specific_force);
             raise_if_failed(h.plant.step(torque, h.body, end), "GimbalPlant.step");

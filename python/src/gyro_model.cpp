@@ -35,15 +35,16 @@ Matrix3<T> attitude_or_identity(const std::optional<Matrix3<T>>& r) {
 
 // The optional inputs default to None (not to zero vectors): a default converted from NumPy
 // on every call would cost more than the step itself.
+// Every argument goes through arrays.hpp's checks (real numbers only, shapes), named.
 template <typename T>
-GyroStepInput<T> step_input(T dt, T spin_hz, const std::optional<Matrix3<T>>& r,
-                            const std::optional<Vector2<T>>& accel, const std::optional<Vector3<T>>& body_rate) {
+GyroStepInput<T> step_input(const py::object& dt, const py::object& spin_hz, const py::object& r,
+                            const py::object& accel, const py::object& body_rate) {
   GyroStepInput<T> in;
-  in.dt_s = dt;
-  in.R_earth_to_body = attitude_or_identity(r);
-  if (accel) in.body_accel = *accel;
-  in.spin_hz = spin_hz;
-  if (body_rate) in.body_rate_rad_s = *body_rate;
+  in.dt_s = real_scalar<T>(dt, "dt");
+  in.R_earth_to_body = attitude_or_identity(optional_matrix<Matrix3<T>>(r, "R_earth_to_body"));
+  if (const auto a = optional_matrix<Vector2<T>>(accel, "body_accel")) in.body_accel = *a;
+  in.spin_hz = real_scalar<T>(spin_hz, "spin_hz");
+  if (const auto b = optional_matrix<Vector3<T>>(body_rate, "body_rate")) in.body_rate_rad_s = *b;
   return in;
 }
 
@@ -53,8 +54,6 @@ void bind_model(py::module_& m, const char* name, const char* doc) {
   using V2 = Vector2<T>;
   using V3 = Vector3<T>;
   using M3 = std::optional<Matrix3<T>>;
-  using O2 = std::optional<V2>;
-  using O3 = std::optional<V3>;
   const std::string who(name);
   py::class_<G>(m, name, doc)
       .def(py::init([](const py::object& config, const py::kwargs& fields) {
@@ -71,25 +70,31 @@ void bind_model(py::module_& m, const char* name, const char* doc) {
            "Configures again (as the constructor); leaves the gyro caged. Raises gyro.ConfigError.")
       .def(
           "uncage",
-          [](G& g, const M3& r, const V2& body_rate, const V2& offset) {
-            raise_if_failed(g.uncage(attitude_or_identity(r), body_rate, offset), "GyroModel.uncage");
+          [](G& g, const py::object& r, const py::object& body_rate, const py::object& offset) {
+            const M3 rm = optional_matrix<Matrix3<T>>(r, "R_earth_to_body");
+            const V2 br = matrix_or_zero<V2>(body_rate, "body_rate");
+            const V2 off = matrix_or_zero<V2>(offset, "offset");
+            raise_if_failed(g.uncage(attitude_or_identity(rm), br, off), "GyroModel.uncage");
           },
-          py::arg("R_earth_to_body") = py::none(), py::arg("body_rate") = V2(V2::Zero()), py::arg("offset") = V2(V2::Zero()),
+          py::arg("R_earth_to_body") = py::none(), py::arg("body_rate") = py::none(), py::arg("offset") = py::none(),
           "Uncages: rates from the body's (pitch, yaw) rates, attitude from the body's (identity if None)\n"
           "plus a small (pitch, yaw) offset. Raises gyro.StatusError.")
       .def(
           "uncage_on_gimbal",
-          [](G& g, const M3& r, const V3& body_rate, const V2& gimbal) {
-            raise_if_failed(g.uncage_on_gimbal(attitude_or_identity(r), body_rate, gimbal),
-                            "GyroModel.uncage_on_gimbal");
+          [](G& g, const py::object& r, const py::object& body_rate, const py::object& gimbal) {
+            const M3 rm = optional_matrix<Matrix3<T>>(r, "R_earth_to_body");
+            const V3 br = matrix_or_zero<V3>(body_rate, "body_rate");
+            const V2 gm = matrix_or_zero<V2>(gimbal, "gimbal");
+            raise_if_failed(g.uncage_on_gimbal(attitude_or_identity(rm), br, gm), "GyroModel.uncage_on_gimbal");
           },
-          py::arg("R_earth_to_body") = py::none(), py::arg("body_rate") = V3(V3::Zero()), py::arg("gimbal") = V2(V2::Zero()),
+          py::arg("R_earth_to_body") = py::none(), py::arg("body_rate") = py::none(), py::arg("gimbal") = py::none(),
           "Uncages at the gimbal angles (pitch, yaw), the gimbals at rest relative to the body (p, q, r).")
       .def(
           "step_torque",
-          [](G& g, T dt, const V2& torque, T spin_hz, const M3& r, const O2& accel, const O3& body_rate) {
-            raise_if_failed(g.step_torque(step_input(dt, spin_hz, r, accel, body_rate), torque),
-                            "GyroModel.step_torque");
+          [](G& g, const py::object& dt, const py::object& torque, const py::object& spin_hz, const py::object& r,
+             const py::object& accel, const py::object& body_rate) {
+            const GyroStepInput<T> in = step_input<T>(dt, spin_hz, r, accel, body_rate);
+            raise_if_failed(g.step_torque(in, real_matrix<V2>(torque, "torque")), "GyroModel.step_torque");
           },
           py::arg("dt"), py::arg("torque"), py::kw_only(), py::arg("spin_hz"), py::arg("R_earth_to_body") = py::none(),
           py::arg("body_accel") = py::none(), py::arg("body_rate") = py::none(),
@@ -99,8 +104,10 @@ void bind_model(py::module_& m, const char* name, const char* doc) {
           "gimbal torquer axes (zero if None). A refusal raises gyro.StatusError and leaves the state unchanged.")
       .def(
           "step_slew",
-          [](G& g, T dt, const V2& slew, T spin_hz, const M3& r, const O2& accel, const O3& body_rate) {
-            raise_if_failed(g.step_slew(step_input(dt, spin_hz, r, accel, body_rate), slew), "GyroModel.step_slew");
+          [](G& g, const py::object& dt, const py::object& slew, const py::object& spin_hz, const py::object& r,
+             const py::object& accel, const py::object& body_rate) {
+            const GyroStepInput<T> in = step_input<T>(dt, spin_hz, r, accel, body_rate);
+            raise_if_failed(g.step_slew(in, real_matrix<V2>(slew, "slew_rate")), "GyroModel.step_slew");
           },
           py::arg("dt"), py::arg("slew_rate"), py::kw_only(), py::arg("spin_hz"),
           py::arg("R_earth_to_body") = py::none(), py::arg("body_accel") = py::none(),
@@ -109,8 +116,10 @@ void bind_model(py::module_& m, const char* name, const char* doc) {
           "torque for a frictionless gyro. Otherwise as step_torque().")
       .def(
           "correct_attitude",
-          [](G& g, const V2& angle, const M3& r) {
-            raise_if_failed(g.correct_attitude(angle, attitude_or_identity(r)), "GyroModel.correct_attitude");
+          [](G& g, const py::object& angle, const py::object& r) {
+            const V2 a = real_matrix<V2>(angle, "angle");
+            const M3 rm = optional_matrix<Matrix3<T>>(r, "R_earth_to_body");
+            raise_if_failed(g.correct_attitude(a, attitude_or_identity(rm)), "GyroModel.correct_attitude");
           },
           py::arg("angle"), py::arg("R_earth_to_body") = py::none(),
           "Turns the gyro by small (pitch, yaw) angles about its own axes (an estimator's correction).")
@@ -168,10 +177,14 @@ void bind_gyro_model(py::module_& m) {
   m.attr("FLAG_GIMBAL_LIMIT") = static_cast<unsigned>(kFlagGimbalLimit);
   m.attr("FLAG_SMALL_ANGLE") = static_cast<unsigned>(kFlagSmallAngle);
   m.def(
-      "frame_rotation_y", [](double a) { return to_array(Eigen::Matrix3d(frame_rotation_y(a))); }, py::arg("angle"),
+      "frame_rotation_y",
+      [](const py::object& a) { return to_array(Eigen::Matrix3d(frame_rotation_y(real_scalar(a, "angle")))); },
+      py::arg("angle"),
       "The passive rotation of a body turning by `angle` about its own y axis: R_new = R_y(angle) @ R_old.");
   m.def(
-      "frame_rotation_z", [](double a) { return to_array(Eigen::Matrix3d(frame_rotation_z(a))); }, py::arg("angle"),
+      "frame_rotation_z",
+      [](const py::object& a) { return to_array(Eigen::Matrix3d(frame_rotation_z(real_scalar(a, "angle")))); },
+      py::arg("angle"),
       "The passive rotation of a body turning by `angle` about its own z axis: R_new = R_z(angle) @ R_old.");
 }
 

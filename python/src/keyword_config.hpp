@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "arrays.hpp"
 #include "errors.hpp"
 #include "gyro/config_fields.hpp"
 #include "scenario.hpp"  // sil::edit_distance
@@ -25,13 +26,14 @@ namespace keyword_detail {
 
 template <typename M>
 M to_number(py::handle v, const std::string& path) {
-  if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v)) raise_config_error(path, "expected a number");
-  const double d = PyFloat_AsDouble(v.ptr());
-  if (PyErr_Occurred() != nullptr) {
-    PyErr_Clear();
-    raise_config_error(path, "expected a number");
+  // arrays.hpp's check of a real number (no bool, complex or str), as a ConfigError.
+  try {
+    return real_scalar<M>(v, path.c_str());
+  } catch (const py::type_error& e) {
+    raise_config_error(path, std::string(e.what()).substr(path.size() + 2));
+  } catch (const py::value_error& e) {
+    raise_config_error(path, std::string(e.what()).substr(path.size() + 2));
   }
-  return static_cast<M>(d);
 }
 
 template <typename M>

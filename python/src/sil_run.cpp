@@ -6,13 +6,17 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "arrays.hpp"
 #include "bindings.hpp"
+#include "interrupt.hpp"
 #include "errors.hpp"
 #include "scenario.hpp"
 #include "scenario_source.hpp"
@@ -26,11 +30,24 @@ namespace {
 
 using sil::CellValue;
 
-// Every standard column, kept by kind.
+// run_sil's default output bound: gyro_sil's --max-output-bytes default (apps/main.cpp), 1 GiB.
+constexpr std::uint64_t kDefaultMaxOutputBytes = std::uint64_t{1} << 30;
+// The most ticks run_sil takes (the output bound refuses far fewer at its default).
+constexpr std::uint64_t kMaxTicks = std::uint64_t{1} << 53;
+
+// Every standard column, kept by kind. The run goes on with the GIL released; every
+// kSignalCheckPeriod of wall time a tick takes the GIL back to run Python's signal handlers
+// (PyErr_CheckSignals), so Ctrl-C stops the run within that period plus one tick: the handler's
+// exception (KeyboardInterrupt) is left set and Interrupted thrown out of the loop.
 class ColumnRecorder final : public sil::TickObserver {
  public:
   ColumnRecorder() : row_(sil::csv_columns().size()), columns_(row_.size()) {}
   void on_tick(const sil::TickRecord& r) override {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_check_ >= kSignalCheckPeriod) {
+      last_check_ = now;
+      if (python_signal_raised()) throw Interrupted{};
+    }
     sil::row_cells(r, row_);
     for (std::size_t i = 0; i < row_.size(); ++i) {
       Column& c = columns_[i];
@@ -75,6 +92,7 @@ class ColumnRecorder final : public sil::TickObserver {
   };
   std::vector<CellValue> row_;
   std::vector<Column> columns_;
+  std::chrono::steady_clock::time_point last_check_{std::chrono::steady_clock::now()};
 };
 
 py::dict telemetry(const sil::RunSummary& s) {
@@ -101,13 +119,19 @@ py::dict telemetry(const sil::RunSummary& s) {
 }
 
 py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& precision,
-                  const std::optional<std::uint64_t>& ticks) {
+                  const py::object& ticks_arg, const py::object& max_output_bytes_arg) {
   std::optional<sil::Precision> p;
   if (precision) {
     p = sil::parse_precision(*precision);
-    if (!p) throw py::value_error("precision must be 'float' or 'double'");
+    if (!p) {
+      throw py::value_error("precision: expected 'float' or 'double', got " +
+                            py::repr(py::str(*precision)).cast<std::string>());
+    }
   }
-  if (ticks && *ticks == 0) throw py::value_error("ticks must be >= 1");
+  std::optional<std::uint64_t> ticks;
+  if (!ticks_arg.is_none()) ticks = whole_number(ticks_arg, "ticks", 1, kMaxTicks);
+  const std::uint64_t max_output_bytes =
+      whole_number(max_output_bytes_arg, "max_output_bytes", 1, std::numeric_limits<std::uint64_t>::max());
   const DocumentSource src = document_source(scenario, "scenario");
   ColumnRecorder recorder;
   sil::RunSummary sum;
@@ -121,10 +145,22 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
       sil::check_configs(s);
     }
     if (ticks) s.run.ticks = *ticks;
+    // gyro_sil's bound of its CSV, checked before the run as gyro_sil checks it: the arrays
+    // returned take less (8 bytes a number against the CSV's 16 or more characters).
+    const std::uint64_t bound = sil::csv_size_bound(s);
+    if (bound > max_output_bytes) {
+      throw py::value_error("max_output_bytes: the run's output could take up to " + std::to_string(bound) +
+                            " bytes (" + std::to_string(s.run.ticks + 1) + " rows of " +
+                            std::to_string(sil::csv_row_bytes_bound(s.run.ticks)) + " bytes), more than the limit of " +
+                            std::to_string(max_output_bytes) +
+                            " (raise it with max_output_bytes=..., or run fewer ticks)");
+    }
     sil::RunOptions options;
     options.progress = false;
     py::gil_scoped_release release;
     sum = sil::run_scenario(s, recorder, options);
+  } catch (const Interrupted&) {
+    throw py::error_already_set();  // the KeyboardInterrupt (or whatever the handler raised)
   } catch (const sil::ScenarioError& e) {
     raise_python("ScenarioError", py::make_tuple(std::string(e.what()), e.field(), e.file()));
   } catch (const sil::RunError& e) {
@@ -137,7 +173,9 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
 
 void bind_sil_run(py::module_& m) {
   m.def("_run_sil", &run_sil, py::arg("scenario"), py::arg("precision") = py::none(), py::arg("ticks") = py::none(),
+        py::arg("max_output_bytes") = kDefaultMaxOutputBytes,
         "(columns, telemetry) of a SIL run; gyro.run_sil wraps it in a SilRun.");
+  m.attr("DEFAULT_MAX_OUTPUT_BYTES") = kDefaultMaxOutputBytes;
   m.def(
       "sil_columns",
       [] {

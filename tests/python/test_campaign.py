@@ -40,3 +40,31 @@ def test_given_a_bad_campaign_dict_when_run_then_scenario_error_names_the_field(
     with pytest.raises(gyro.ScenarioError) as e:
         gyro.run_campaign({"base": "scenarios/seeker_slew.json", "runs": 0, "seed": 1}, base_dir=source_dir)
     assert e.value.field == "runs"
+
+
+@pytest.mark.parametrize("threads, error", [(100_000, ValueError), (1025, ValueError), (0, ValueError),
+                                            (-1, ValueError), (2**40, ValueError), (True, TypeError),
+                                            (2.0, TypeError), ("2", TypeError)])
+def test_given_a_thread_count_out_of_bounds_when_run_then_error_names_threads_and_the_bound(source_dir, threads,
+                                                                                           error):
+    assert gyro.MAX_THREADS == 1024  # gyro_campaign -j's bound
+    with pytest.raises(error) as e:
+        gyro.run_campaign({"base": "scenarios/seeker_slew.json", "runs": 2, "seed": 1}, threads=threads,
+                          base_dir=source_dir)
+    msg = str(e.value)
+    assert msg.startswith("threads: expected a whole number from 1 to 1024, got ") and msg.endswith(repr(threads)), msg
+
+
+def test_given_the_largest_thread_count_when_run_then_the_runs_are_done(source_dir):
+    result = gyro.run_campaign({"base": "scenarios/seeker_slew.json", "runs": 3, "seed": 1}, threads=1024,
+                               base_dir=source_dir)
+    assert list(result["run"]) == [0, 1, 2]
+
+
+def test_given_a_run_count_out_of_bounds_when_run_then_error_names_runs(source_dir):
+    doc = {"base": "scenarios/seeker_slew.json", "runs": 4, "seed": 1}
+    with pytest.raises(ValueError,
+                       match=r"^runs: expected a whole number from 1 to the campaign's run count 4, got 5$"):
+        gyro.run_campaign(doc, runs=5, base_dir=source_dir)
+    with pytest.raises(TypeError, match=r"^runs: expected a whole number from 1 to 1000000, got bool True$"):
+        gyro.run_campaign(doc, runs=True, base_dir=source_dir)

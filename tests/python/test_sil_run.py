@@ -4,6 +4,7 @@ cell formatted as gyro_sil formats it), from a file or a dict, in double and flo
 import csv
 import json
 import subprocess
+import time
 
 import numpy as np
 import pytest
@@ -93,3 +94,45 @@ def test_given_a_missing_file_when_run_then_scenario_error(tmp_path):
     with pytest.raises(gyro.ScenarioError) as e:
         gyro.run_sil(tmp_path / "none.json")
     assert e.value.field == "(file)"
+
+
+def test_given_a_run_past_the_output_bound_when_run_then_value_error_before_any_work(source_dir):
+    assert gyro.DEFAULT_MAX_OUTPUT_BYTES == 1 << 30  # gyro_sil's --max-output-bytes default
+    path = source_dir / "scenarios" / "seeker_slew.json"
+    start = time.monotonic()
+    with pytest.raises(ValueError) as e:
+        gyro.run_sil(path, ticks=100_000_000)  # 58 GB of CSV; the arrays would need about 34 GB
+    assert time.monotonic() - start < 1.0  # refused up front, not after a run
+    msg = str(e.value)
+    assert msg.startswith("max_output_bytes: the run's output could take up to "), msg
+    assert "(100000001 rows of " in msg and "more than the limit of 1073741824" in msg, msg
+    assert "raise it with max_output_bytes=" in msg, msg
+    with pytest.raises(ValueError, match=r"more than the limit of 100000 \(raise it"):
+        gyro.run_sil(path, ticks=1000, max_output_bytes=100_000)
+    assert len(gyro.run_sil(path, ticks=1000, max_output_bytes=1_000_000)) == 1001  # raised: it runs
+
+
+@pytest.mark.parametrize("value, error", [(0, ValueError), (-1, ValueError), (1.5e9, TypeError), (True, TypeError),
+                                          (None, TypeError), ("1GiB", TypeError)])
+def test_given_a_bad_output_bound_when_run_then_it_is_refused_not_switched_off(source_dir, value, error):
+    with pytest.raises(error, match=r"^max_output_bytes: expected a whole number from 1 to 18446744073709551615, got"):
+        gyro.run_sil(source_dir / "scenarios" / "seeker_slew.json", ticks=10, max_output_bytes=value)
+
+
+@pytest.mark.parametrize("value, error", [(0, ValueError), (-5, ValueError), (10.0, TypeError), (True, TypeError),
+                                          ("10", TypeError)])
+def test_given_a_bad_tick_count_when_run_then_error_names_ticks(source_dir, value, error):
+    with pytest.raises(error, match=r"^ticks: expected a whole number from 1 to "):
+        gyro.run_sil(source_dir / "scenarios" / "seeker_slew.json", ticks=value)
+
+
+def test_given_the_same_run_then_gyro_sil_refuses_it_at_the_same_bound(source_dir, gyro_sil, tmp_path):
+    path = source_dir / "scenarios" / "seeker_slew.json"
+    r = subprocess.run([str(gyro_sil), str(path), "-o", str(tmp_path / "out.csv"), "--ticks", "100000000", "--quiet"],
+                       capture_output=True, text=True)
+    assert r.returncode != 0
+    with pytest.raises(ValueError) as e:
+        gyro.run_sil(path, ticks=100_000_000)
+    bound = str(e.value).split("could take up to ")[1].split(" bytes")[0]
+    assert f"could take up to {bound} bytes" in r.stderr and "limit of 1073741824" in r.stderr, r.stderr
+    assert not (tmp_path / "out.csv").exists()

@@ -45,6 +45,7 @@ inline constexpr double kMaxNutationPhasePerTick = 1e3;  // rad; beyond, float's
 // at most 3.3e-3 rad over the whole grid, 2.8e-4 inside the envelope).
 inline constexpr double kModelRateError = 0.01;
 inline constexpr double kCageNutationShare = 0.25;  // a caging loop within a quarter of the nutation frequency
+inline constexpr double kShaperLostLeakage = 0.5;   // a shaper passing more than this of the nutation: none
 
 namespace component_detail {
 // The count that lasts `seconds` at tick `tick_s`.
@@ -118,19 +119,34 @@ void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
   if (beta > 0.0) {
     above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), kCageNutationShare * beta,
           "the nutation frequency / 4", "a faster caging loop or stop protection would drive the nutation it reads");
-    if (spacing == 0u) {
-      // Holding the gimbal at the protection cone c_p against the body's turn b, the stop
-      // protection steers along the outward direction, which turns with the spin axis: a
-      // second loop from the spin axis's position to its rate, of gain b / sin c_p. b is the
-      // fastest turn it can hold: the navigation's limit or the torquer's authority T / H.
-      const double protect_cone = cone - static_cast<double>(c.gimbal_stop_margin_rad);
-      const double hold = std::min(static_cast<double>(c.max_body_rate_rad_s), static_cast<double>(c.max_torque) / h);
-      // (No protection cone at all is the margin's refusal below, not this rule's.)
-      if (protect_cone > 0.0) {
-        above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), terms.alpha - hold / std::sin(protect_cone),
-              "the bearings' nutation damping (f/2)(1/J1 + 1/J2) less the stop protection's turn gain b / sin c_p",
-              "no torque shaper at this tick (gyro/torque_shaper.hpp): the caging loop and the stop protection "
-              "would pump the nutation");
+    // Holding the gimbal at the protection cone c_p against the body's turn b, the stop
+    // protection steers along the outward direction, which turns with the spin axis: a
+    // second loop from the spin axis's position to its rate, of gain b / sin c_p. b is the
+    // fastest turn it can hold: the navigation's limit or the torquer's authority T / H.
+    // (No protection cone at all is the margin's refusal below, not this rule's.)
+    const double protect_cone = cone - static_cast<double>(c.gimbal_stop_margin_rad);
+    const double hold = std::min(static_cast<double>(c.max_body_rate_rad_s), static_cast<double>(c.max_torque) / h);
+    if (spacing == 0u && protect_cone > 0.0) {
+      above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), terms.alpha - hold / std::sin(protect_cone),
+            "the bearings' nutation damping (f/2)(1/J1 + 1/J2) less the stop protection's turn gain b / sin c_p",
+            "no torque shaper at this tick (gyro/torque_shaper.hpp): the caging loop and the stop protection "
+            "would pump the nutation");
+    } else if (spacing != 0u && protect_cone > 0.0) {
+      // The shaper is made for the nutation at zero gimbal angles. Held at c_p in pitch, the
+      // motor-held spin adds C tan^2 c_p to the yaw inertia and slows the nutation; where the
+      // shaper passes more than half of that nutation its notch is lost there, and the
+      // bearings must damp it as where there is no shaper.
+      const double tan_p = std::tan(protect_cone);
+      const double j2_at_cone = j2 + static_cast<double>(c.spin_inertia) * tan_p * tan_p;
+      const detail::RateMatrixTerms<double> at_cone =
+          detail::rate_matrix_terms(RotorParameters<double>{j1, j2_at_cone, friction, h});
+      const double beta_at_cone = at_cone.beta_sq > 0.0 ? std::sqrt(at_cone.beta_sq) : 0.0;
+      const ShaperDesign<double> shaper = design_shaper(beta * tick);
+      if (shaper_leakage(shaper, beta_at_cone * tick) > kShaperLostLeakage) {
+        above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), at_cone.alpha - hold / std::sin(protect_cone),
+              "the bearings' nutation damping at the protection cone less the stop protection's turn gain b / sin c_p",
+              "the torque shaper passes more than half of the nutation at the protection cone (yaw inertia "
+              "J2 + C tan^2 c_p): the caging loop and the stop protection would pump the nutation there");
       }
     }
   }

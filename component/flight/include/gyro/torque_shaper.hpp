@@ -26,13 +26,21 @@ struct ShaperDesign {
   T edge{};                  // a
 };
 
+// A phase a tick folded into [0, pi]: what the ticks' samples of it see.
+template <typename T>
+[[nodiscard]] T folded_phase(T per_tick) noexcept {
+  const T turn = T(2) * kPi<T>;
+  const T wrapped = per_tick - turn * std::floor(per_tick / turn);
+  const T folded = std::min(wrapped, turn - wrapped);
+  return folded;
+}
+
 // The design for a nutation phase of `per_tick` rad a tick (beta dt, >= 0 and finite).
 template <typename T>
 [[nodiscard]] ShaperDesign<T> design_shaper(T per_tick) noexcept {
   ShaperDesign<T> d;
   const T turn = T(2) * kPi<T>;
-  const T wrapped = per_tick - turn * std::floor(per_tick / turn);
-  const T folded = std::min(wrapped, turn - wrapped);
+  const T folded = folded_phase(per_tick);
   if (!(folded > T(0))) return d;
   const T spacing = std::ceil(kPi<T> / (T(2) * folded));
   // A relative error e in beta lets through about e m beta dt of a step's nutation: past a
@@ -42,6 +50,15 @@ template <typename T>
   d.spacing = static_cast<std::uint32_t>(spacing);
   d.edge = T(1) / (T(2) * (T(1) - std::cos(spacing * folded)));
   return d;
+}
+
+// The share of a nutation of `per_tick` rad a tick that a design lets through: its gain there,
+// |a + (1 - 2a) e^-i m phi + a e^-2i m phi| = |1 - 2a (1 - cos m phi)| (0 at the design's
+// phase, 1 at zero frequency and with no shaper).
+template <typename T>
+[[nodiscard]] T shaper_leakage(const ShaperDesign<T>& d, T per_tick) noexcept {
+  if (d.spacing == 0u) return T(1);
+  return std::abs(T(1) - T(2) * d.edge * (T(1) - std::cos(static_cast<T>(d.spacing) * folded_phase(per_tick))));
 }
 
 }  // namespace gyro

@@ -32,16 +32,36 @@ class SilRun:
         return self.columns.keys()
 
 
-@dataclass
+@dataclass(repr=False)
 class CampaignRun:
     """A campaign's per-run table (gyro_campaign's runs.csv), column by column.
 
-    columns: name -> float64 array for numeric columns (NaN where a cell is empty), else a
-    list of str. header: the column names in order.
+    columns: name -> run and seed as uint64 arrays (exact: a seed has 64 bits); the verdicts
+    (pass, detected, false_alarm) as lists of bool, None where a run has no verdict (it was
+    refused, or has no fault to detect); other numbers as float64 arrays (NaN where a cell is
+    empty); anything else (status, fault_kind, final_mode, reason, ...) as lists of str.
+    header: the column names in order.
     """
 
     header: List[str]
     columns: Dict[str, Any]
+
+    def summary(self) -> Dict[str, Any]:
+        """Runs, runs per status, and the pass verdicts: passed, failed, none (not judged)."""
+        status: Dict[str, int] = {}
+        for s in self.columns["status"]:
+            status[s] = status.get(s, 0) + 1
+        verdicts = self.columns["pass"]
+        return {"runs": len(self), "status": status,
+                "passed": sum(1 for v in verdicts if v is True),
+                "failed": sum(1 for v in verdicts if v is False),
+                "not_judged": sum(1 for v in verdicts if v is None)}
+
+    def __repr__(self) -> str:
+        s = self.summary()
+        status = ", ".join(f"{k} {v}" for k, v in sorted(s["status"].items()))
+        return (f"CampaignRun({s['runs']} runs, {len(self.header)} columns; status: {status}; "
+                f"passed {s['passed']}, failed {s['failed']})")
 
     def __getitem__(self, name: str):
         """The column `name`."""

@@ -1,12 +1,15 @@
 // A campaign run (apps/campaign, gyro_campaign's library) from Python: the campaign parsed
 // as gyro_campaign does, its runs executed on worker threads (RunPool), and the per-run table
-// (runs.csv) returned column by column: numbers as float64 (NaN for an empty cell), anything
-// else as a list of str.
+// (runs.csv) returned column by column: run and seed as uint64 (a seed is 64 bits, which
+// float64 would round), the verdicts (pass and the boolean metrics) as lists of bool (None
+// where a run has none, e.g. refused), other numbers as float64 (NaN for an empty cell),
+// anything else as a list of str.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -55,9 +58,61 @@ campaign::RunTable run_all(const Campaign& c, unsigned threads) {
   return campaign::parse_run_table(text, c, c.file);
 }
 
-py::dict table_columns(const campaign::RunTable& t) {
+// The columns whose cells are whole numbers of 64 bits, and those that hold a verdict.
+bool is_index_column(const std::string& name) { return name == "run" || name == "seed"; }
+
+std::vector<std::string> boolean_columns(const Campaign& c) {
+  std::vector<std::string> names = {"pass"};
+  for (const campaign::MetricColumn& m : campaign::metric_columns(c.metrics)) {
+    if (m.type == campaign::ColumnType::kBoolean) names.push_back(m.name);
+  }
+  return names;
+}
+
+py::array_t<std::uint64_t> index_column(const campaign::RunTable& t, std::size_t col) {
+  py::array_t<std::uint64_t> out(static_cast<py::ssize_t>(t.size()));
+  auto v = out.mutable_unchecked<1>();
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    const std::string cell = t.text(r, col);
+    std::uint64_t x = 0;
+    const std::from_chars_result p = std::from_chars(cell.data(), cell.data() + cell.size(), x);
+    if (cell.empty() || p.ec != std::errc{} || p.ptr != cell.data() + cell.size()) {
+      throw py::value_error("runs.csv: " + t.header()[col] + " of row " + std::to_string(r) + " is not a whole number: " +
+                            cell);
+    }
+    v(static_cast<py::ssize_t>(r)) = x;
+  }
+  return out;
+}
+
+py::list boolean_column(const campaign::RunTable& t, std::size_t col) {
+  py::list out;
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    const std::string cell = t.text(r, col);
+    if (cell == "true") {
+      out.append(py::bool_(true));
+    } else if (cell == "false") {
+      out.append(py::bool_(false));
+    } else {
+      out.append(py::none());
+    }
+  }
+  return out;
+}
+
+py::dict table_columns(const campaign::RunTable& t, const Campaign& c) {
   py::dict d;
+  const std::vector<std::string> verdicts = boolean_columns(c);
   for (std::size_t col = 0; col < t.header().size(); ++col) {
+    const std::string& name = t.header()[col];
+    if (is_index_column(name)) {
+      d[py::str(name)] = index_column(t, col);
+      continue;
+    }
+    if (std::find(verdicts.begin(), verdicts.end(), name) != verdicts.end()) {
+      d[py::str(name)] = boolean_column(t, col);
+      continue;
+    }
     std::vector<double> numbers;
     bool numeric = true;
     for (std::size_t r = 0; r < t.size() && numeric; ++r) {
@@ -110,7 +165,7 @@ py::tuple run_campaign(const py::object& source, const py::object& runs_arg, con
       table.emplace(run_all(c, threads));
     }
     header = table->header();
-    columns = table_columns(*table);
+    columns = table_columns(*table, c);
   } catch (const Interrupted&) {
     throw py::error_already_set();  // the KeyboardInterrupt (or whatever the handler raised)
   } catch (const campaign::CampaignError& e) {

@@ -23,10 +23,15 @@ def test_given_a_campaign_when_run_from_python_then_its_rows_equal_gyro_campaign
     assert result.header == header
     assert len(result) == 8
     assert list(result["run"]) == list(range(8))
+    verdicts = {"true": True, "false": False, "": None}
     for i, row in enumerate(rows[:8]):
         for j, name in enumerate(header):
             col = result[name]
-            if isinstance(col, np.ndarray):
+            if name in ("run", "seed"):
+                assert col.dtype == np.uint64 and int(col[i]) == int(row[j]), (i, name)
+            elif name in ("pass", "detected", "false_alarm"):
+                assert col[i] is verdicts[row[j]], (i, name)
+            elif isinstance(col, np.ndarray):
                 want = float(row[j]) if row[j] else np.nan
                 assert np.array_equal(col[i], want, equal_nan=True), (i, name)
             else:
@@ -68,3 +73,22 @@ def test_given_a_run_count_out_of_bounds_when_run_then_error_names_runs(source_d
         gyro.run_campaign(doc, runs=5, base_dir=source_dir)
     with pytest.raises(TypeError, match=r"^runs: expected a whole number from 1 to 1000000, got bool True$"):
         gyro.run_campaign(doc, runs=True, base_dir=source_dir)
+
+
+def test_given_a_campaign_when_run_then_seeds_are_exact_and_verdicts_are_booleans(source_dir):
+    # Seeds are drawn over 64 bits: most are above 2**53, where float64 would round them.
+    result = gyro.run_campaign({"base": "scenarios/seeker_slew.json", "runs": 4, "seed": 1}, base_dir=source_dir)
+    seeds = result["seed"]
+    assert seeds.dtype == np.uint64
+    assert any(int(s) > 2**53 and int(s) % 2 == 1 for s in seeds), seeds
+    assert all(isinstance(v, bool) for v in result["pass"]), result["pass"]
+
+
+def test_given_a_campaign_run_when_shown_then_its_repr_is_one_short_line(source_dir):
+    result = gyro.run_campaign({"base": "scenarios/seeker_slew.json", "runs": 3, "seed": 1}, base_dir=source_dir)
+    text = repr(result)
+    assert "\n" not in text and len(text) < 200, text
+    s = result.summary()
+    assert text == (f"CampaignRun(3 runs, {len(result.header)} columns; status: ok 3; "
+                    f"passed {s['passed']}, failed {s['failed']})")
+    assert s["runs"] == 3 and s["passed"] + s["failed"] + s["not_judged"] == 3

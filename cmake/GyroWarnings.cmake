@@ -5,7 +5,10 @@ target_compile_options(gyro_warnings INTERFACE
   $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra -Wpedantic -Wshadow -Wconversion
     -Wsign-conversion -Wdouble-promotion -Wcast-align -Wnon-virtual-dtor
     -Wold-style-cast -Wnull-dereference>)
-option(GYRO_WERROR "Treat warnings as errors" ON)
+# Warnings are errors in the presets and CI (CMakePresets.json), not by default: a user's own
+# build type or compiler (GCC 12 at -O3 warns -Wrestrict inside std::string) must not fail on
+# a warning we do not see.
+option(GYRO_WERROR "Treat warnings as errors" OFF)
 if(GYRO_WERROR)
   target_compile_options(gyro_warnings INTERFACE $<$<CXX_COMPILER_ID:GNU,Clang>:-Werror>)
 endif()

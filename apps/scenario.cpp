@@ -404,9 +404,7 @@ void parse_faults(const Reader& g, const RunSpec& run, Scenario& s) {
     const double duration = f.non_negative("duration_s", 0);
     ev.duration_ticks = duration > 0 ? std::max<std::uint64_t>(1, ticks_at(f, "duration_s", duration, run.tick_s)) : 0;
     ev.axis = static_cast<int>(f.integer("axis", -1, -1, 1, "0 (pitch), 1 (yaw) or -1 (both)"));
-    const bool needs_magnitude = ev.kind == FaultKind::kBiasJump || ev.kind == FaultKind::kSaturatedTorquer ||
-                                 ev.kind == FaultKind::kSpinMotorFailure;
-    if (needs_magnitude && !f.has("magnitude")) {
+    if (fault_needs_magnitude(ev.kind) && !f.has("magnitude")) {
       f.fail("magnitude", std::string("missing required field (needed by kind \"") + fault_kind_name(ev.kind) + "\")");
     }
     ev.magnitude = f.number("magnitude", 0);

@@ -388,10 +388,6 @@ std::vector<Dispersion> parse_dispersions(const Fields& top, const json& base) {
 
 // ---- fault injection
 
-bool needs_magnitude(FaultKind k) {
-  return k == FaultKind::kBiasJump || k == FaultKind::kSaturatedTorquer || k == FaultKind::kSpinMotorFailure;
-}
-
 FaultOption parse_fault_option(const Fields& f, double duration_s) {
   FaultOption o;
   const std::string kind = f.text("kind");
@@ -433,7 +429,7 @@ FaultOption parse_fault_option(const Fields& f, double duration_s) {
       one(a, p);
     }
   }
-  if (needs_magnitude(*o.kind)) {
+  if (fault_needs_magnitude(*o.kind)) {
     if (!f.has("magnitude")) {
       f.fail("magnitude", "missing required field (needed by kind \"" + kind + "\")");
     }

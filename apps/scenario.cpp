@@ -98,7 +98,7 @@ class Reader {
     const json& v = required(key);
     if (v.is_number_unsigned()) return v.get<std::uint64_t>();
     if (v.is_number_integer()) fail(key, "must be >= 0, got " + v.dump());
-    fail(key, std::string("expected a non-negative integer, got ") + describe(v));
+    fail(key, std::string("expected a non-negative integer, got ") + describe_json(v));
   }
   [[nodiscard]] std::uint32_t count32(std::string_view key) const {
     const std::uint64_t v = count(key);
@@ -111,7 +111,7 @@ class Reader {
                                      const std::string& range) const {
     if (!has(key)) return fallback;
     const json& v = required(key);
-    if (!v.is_number_integer()) fail(key, std::string("expected an integer, got ") + describe(v));
+    if (!v.is_number_integer()) fail(key, std::string("expected an integer, got ") + describe_json(v));
     bool fits = true;
     std::int64_t value = 0;
     if (v.is_number_unsigned()) {
@@ -127,7 +127,7 @@ class Reader {
 
   [[nodiscard]] bool boolean(std::string_view key) const {
     const json& v = required(key);
-    if (!v.is_boolean()) fail(key, std::string("expected true or false, got ") + describe(v));
+    if (!v.is_boolean()) fail(key, std::string("expected true or false, got ") + describe_json(v));
     return v.get<bool>();
   }
   [[nodiscard]] bool boolean(std::string_view key, bool fallback) const { return has(key) ? boolean(key) : fallback; }
@@ -135,7 +135,7 @@ class Reader {
   [[nodiscard]] std::string text(std::string_view key, const std::string& fallback) const {
     if (!has(key)) return fallback;
     const json& v = required(key);
-    if (!v.is_string()) fail(key, std::string("expected a string, got ") + describe(v));
+    if (!v.is_string()) fail(key, std::string("expected a string, got ") + describe_json(v));
     return v.get<std::string>();
   }
 
@@ -144,7 +144,7 @@ class Reader {
     const json& v = required(key);
     const std::string p = path_of(key);
     if (!v.is_array() || v.size() != N) {
-      fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + describe(v));
+      fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + describe_json(v));
     }
     std::array<double, N> out{};
     for (std::size_t i = 0; i < N; ++i) out[i] = as_number(v[i], at_index(p, i));
@@ -164,7 +164,7 @@ class Reader {
 
   [[nodiscard]] const json& array(std::string_view key) const {
     const json& v = required(key);
-    if (!v.is_array()) fail(key, std::string("expected an array, got ") + describe(v));
+    if (!v.is_array()) fail(key, std::string("expected an array, got ") + describe_json(v));
     return v;
   }
 
@@ -176,15 +176,9 @@ class Reader {
     return os.str();
   }
 
-  [[nodiscard]] static std::string describe(const json& v) {
-    if (v.is_string() || v.is_boolean() || v.is_null()) return std::string(v.type_name()) + " " + v.dump();
-    if (v.is_number()) return std::string(v.type_name()) + " " + v.dump();
-    return v.type_name();
-  }
-
  private:
   [[nodiscard]] double as_number(const json& v, const std::string& path) const {
-    if (!v.is_number()) fail_at(path, std::string("expected a number, got ") + describe(v));
+    if (!v.is_number()) fail_at(path, std::string("expected a number, got ") + describe_json(v));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail_at(path, "not a finite number");
     return d;
@@ -433,7 +427,7 @@ BodyProfile parse_body(const Reader& r, Scenario& s) {
   } else if (rate.is_array() && rate.size() == 3) {
     b.rate_rad_s = r.numbers<3>("rate_rad_s");
   } else {
-    r.fail("rate_rad_s", "expected an array of 3 numbers (p, q, r) or 2 (q, r), got " + Reader::describe(rate));
+    r.fail("rate_rad_s", "expected an array of 3 numbers (p, q, r) or 2 (q, r), got " + describe_json(rate));
   }
   const std::string comp = r.text("composition", "rotation_vector");
   if (comp == "rotation_vector") {

@@ -9,7 +9,6 @@
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <span>
 #include <type_traits>
 #include <sstream>
@@ -18,6 +17,7 @@
 #include "bounded_read.hpp"
 #include "printable.hpp"
 #include "scenario_defaults.hpp"
+#include "strict_json.hpp"
 
 namespace gyro::sil {
 
@@ -27,30 +27,6 @@ using json = nlohmann::json;
 
 // Longest run accepted: a sanity bound (the CSV has one row per tick).
 constexpr std::uint64_t kMaxTicks = 100'000'000;
-
-// A key that is a plain name joins with a dot; any other (empty, or with dots, brackets,
-// spaces, quotes, control characters, non-ASCII) as a JSON string in brackets, so that a path
-// always reads back to one field and prints safely.
-bool plain_key(std::string_view key) {
-  return !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-  });
-}
-std::string join(const std::string& path, std::string_view key) {
-  std::string out = path;
-  if (plain_key(key)) {
-    if (!out.empty()) out += '.';
-    out += key;
-  } else {
-    out += '[';
-    out += json(std::string(key)).dump(-1, ' ', true);  // ASCII only: every other character as \uXXXX
-    out += ']';
-  }
-  return out;
-}
-std::string at_index(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
-}
 
 }  // namespace
 
@@ -71,17 +47,6 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 namespace {
 
-std::string quoted_list(std::span<const std::string_view> names) {
-  std::string out;
-  for (std::string_view n : names) {
-    if (!out.empty()) out += ", ";
-    out += '"';
-    out += n;
-    out += '"';
-  }
-  return out;
-}
-
 // Reads one JSON object: refuses unknown keys up front, then hands out typed fields.
 class Reader {
  public:
@@ -89,31 +54,15 @@ class Reader {
       : Reader(file, j, std::move(path), std::span<const std::string_view>(keys.begin(), keys.size())) {}
   Reader(const std::string& file, const json& j, std::string path, std::span<const std::string_view> keys)
       : file_(file), j_(j), path_(std::move(path)) {
-    if (!j.is_object()) fail_at(path_, std::string("expected an object, got ") + j.type_name());
-    for (const auto& item : j.items()) {
-      const std::string& k = item.key();
-      if (std::find(keys.begin(), keys.end(), k) != keys.end()) continue;
-      std::string reason = "unknown key";
-      std::string_view best;
-      std::size_t best_d = std::numeric_limits<std::size_t>::max();
-      for (std::string_view allowed : keys) {
-        const std::size_t d = edit_distance(k, allowed);
-        if (d < best_d) {
-          best_d = d;
-          best = allowed;
-        }
-      }
-      if (!best.empty() && best_d <= std::max<std::size_t>(2, k.size() / 3)) {
-        reason += " (did you mean \"" + std::string(best) + "\"?)";
-      } else {
-        reason += " (allowed: " + quoted_list(keys) + ")";
-      }
-      fail_at(join(path_, k), reason);
+    try {
+      check_object_keys(j, path_, keys, KeyJoin::kQuoted);
+    } catch (const JsonRefusal& r) {
+      throw ScenarioError(file_, r.field(), r.reason());
     }
   }
 
   [[nodiscard]] const std::string& path() const noexcept { return path_; }
-  [[nodiscard]] std::string path_of(std::string_view key) const { return join(path_, key); }
+  [[nodiscard]] std::string path_of(std::string_view key) const { return join_key(path_, key); }
   [[nodiscard]] bool has(std::string_view key) const { return j_.contains(key); }
 
   [[noreturn]] void fail(std::string_view key, const std::string& reason) const {
@@ -149,7 +98,7 @@ class Reader {
     const json& v = required(key);
     if (v.is_number_unsigned()) return v.get<std::uint64_t>();
     if (v.is_number_integer()) fail(key, "must be >= 0, got " + v.dump());
-    fail(key, std::string("expected a non-negative integer, got ") + describe(v));
+    fail(key, std::string("expected a non-negative integer, got ") + describe_json(v));
   }
   [[nodiscard]] std::uint32_t count32(std::string_view key) const {
     const std::uint64_t v = count(key);
@@ -162,7 +111,7 @@ class Reader {
                                      const std::string& range) const {
     if (!has(key)) return fallback;
     const json& v = required(key);
-    if (!v.is_number_integer()) fail(key, std::string("expected an integer, got ") + describe(v));
+    if (!v.is_number_integer()) fail(key, std::string("expected an integer, got ") + describe_json(v));
     bool fits = true;
     std::int64_t value = 0;
     if (v.is_number_unsigned()) {
@@ -178,7 +127,7 @@ class Reader {
 
   [[nodiscard]] bool boolean(std::string_view key) const {
     const json& v = required(key);
-    if (!v.is_boolean()) fail(key, std::string("expected true or false, got ") + describe(v));
+    if (!v.is_boolean()) fail(key, std::string("expected true or false, got ") + describe_json(v));
     return v.get<bool>();
   }
   [[nodiscard]] bool boolean(std::string_view key, bool fallback) const { return has(key) ? boolean(key) : fallback; }
@@ -186,7 +135,7 @@ class Reader {
   [[nodiscard]] std::string text(std::string_view key, const std::string& fallback) const {
     if (!has(key)) return fallback;
     const json& v = required(key);
-    if (!v.is_string()) fail(key, std::string("expected a string, got ") + describe(v));
+    if (!v.is_string()) fail(key, std::string("expected a string, got ") + describe_json(v));
     return v.get<std::string>();
   }
 
@@ -195,7 +144,7 @@ class Reader {
     const json& v = required(key);
     const std::string p = path_of(key);
     if (!v.is_array() || v.size() != N) {
-      fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + describe(v));
+      fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + describe_json(v));
     }
     std::array<double, N> out{};
     for (std::size_t i = 0; i < N; ++i) out[i] = as_number(v[i], at_index(p, i));
@@ -215,7 +164,7 @@ class Reader {
 
   [[nodiscard]] const json& array(std::string_view key) const {
     const json& v = required(key);
-    if (!v.is_array()) fail(key, std::string("expected an array, got ") + describe(v));
+    if (!v.is_array()) fail(key, std::string("expected an array, got ") + describe_json(v));
     return v;
   }
 
@@ -227,15 +176,9 @@ class Reader {
     return os.str();
   }
 
-  [[nodiscard]] static std::string describe(const json& v) {
-    if (v.is_string() || v.is_boolean() || v.is_null()) return std::string(v.type_name()) + " " + v.dump();
-    if (v.is_number()) return std::string(v.type_name()) + " " + v.dump();
-    return v.type_name();
-  }
-
  private:
   [[nodiscard]] double as_number(const json& v, const std::string& path) const {
-    if (!v.is_number()) fail_at(path, std::string("expected a number, got ") + describe(v));
+    if (!v.is_number()) fail_at(path, std::string("expected a number, got ") + describe_json(v));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail_at(path, "not a finite number");
     return d;
@@ -404,9 +347,7 @@ void parse_faults(const Reader& g, const RunSpec& run, Scenario& s) {
     const double duration = f.non_negative("duration_s", 0);
     ev.duration_ticks = duration > 0 ? std::max<std::uint64_t>(1, ticks_at(f, "duration_s", duration, run.tick_s)) : 0;
     ev.axis = static_cast<int>(f.integer("axis", -1, -1, 1, "0 (pitch), 1 (yaw) or -1 (both)"));
-    const bool needs_magnitude = ev.kind == FaultKind::kBiasJump || ev.kind == FaultKind::kSaturatedTorquer ||
-                                 ev.kind == FaultKind::kSpinMotorFailure;
-    if (needs_magnitude && !f.has("magnitude")) {
+    if (fault_needs_magnitude(ev.kind) && !f.has("magnitude")) {
       f.fail("magnitude", std::string("missing required field (needed by kind \"") + fault_kind_name(ev.kind) + "\")");
     }
     ev.magnitude = f.number("magnitude", 0);
@@ -486,7 +427,7 @@ BodyProfile parse_body(const Reader& r, Scenario& s) {
   } else if (rate.is_array() && rate.size() == 3) {
     b.rate_rad_s = r.numbers<3>("rate_rad_s");
   } else {
-    r.fail("rate_rad_s", "expected an array of 3 numbers (p, q, r) or 2 (q, r), got " + Reader::describe(rate));
+    r.fail("rate_rad_s", "expected an array of 3 numbers (p, q, r) or 2 (q, r), got " + describe_json(rate));
   }
   const std::string comp = r.text("composition", "rotation_vector");
   if (comp == "rotation_vector") {
@@ -544,66 +485,9 @@ std::vector<GuidanceEvent> parse_guidance(const Reader& r, const RunSpec& run, c
   return out;
 }
 
-// Refuses, while the document is parsed, what nlohmann's DOM would hide or what no scenario
-// needs: a key repeated in one object (the DOM keeps the last silently) and nesting deeper
-// than kMaxJsonDepth. Follows the JSON path of every container to name the field.
-class ParseChecker {
- public:
-  explicit ParseChecker(const std::string& file) : file_(file) {}
-
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start: open(false); break;
-      case json::parse_event_t::array_start: open(true); break;
-      case json::parse_event_t::key: {
-        Frame& f = frames_.back();
-        const std::string& k = parsed.get_ref<const std::string&>();
-        if (!f.keys.insert(k).second) {
-          throw ScenarioError(file_, join(f.path, k), "duplicate key (a key may appear only once in an object)");
-        }
-        f.key = k;
-        break;
-      }
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        frames_.pop_back();
-        element_done();
-        break;
-      case json::parse_event_t::value: element_done(); break;
-    }
-    return true;
-  }
-
- private:
-  struct Frame {
-    std::string path;
-    bool array{false};
-    std::size_t index{0};   // of the next element (arrays)
-    std::string key;        // the last key (objects)
-    std::set<std::string> keys;
-  };
-  void open(bool array) {
-    std::string path;
-    if (!frames_.empty()) {
-      const Frame& parent = frames_.back();
-      path = parent.array ? at_index(parent.path, parent.index) : join(parent.path, parent.key);
-    }
-    if (frames_.size() >= kMaxJsonDepth) {
-      throw ScenarioError(file_, path, "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-    }
-    frames_.push_back(Frame{std::move(path), array, 0, {}, {}});
-  }
-  void element_done() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-  }
-
-  std::string file_;
-  std::vector<Frame> frames_;
-};
-
 void record_values(const json& j, const std::string& path, std::map<std::string, std::string>& out) {
   if (j.is_object()) {
-    for (const auto& item : j.items()) record_values(item.value(), join(path, item.key()), out);
+    for (const auto& item : j.items()) record_values(item.value(), join_key(path, item.key()), out);
   } else if (j.is_array()) {
     for (std::size_t i = 0; i < j.size(); ++i) record_values(j[i], at_index(path, i), out);
   } else {
@@ -640,14 +524,9 @@ const char* request_name(ModeRequest r) noexcept {
 Scenario parse_scenario(std::string_view json_text, const std::string& file) {
   json doc;
   try {
-    doc = json::parse(json_text.begin(), json_text.end(), ParseChecker(file), true, false);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    if (!what.empty() && what.front() == '[') {
-      const std::size_t close = what.find("] ");
-      if (close != std::string::npos) what.erase(0, close + 2);
-    }
-    throw ScenarioError(file, "(document)", "not valid JSON: " + what);
+    doc = parse_strict_json(json_text, kMaxJsonDepth, KeyJoin::kQuoted);
+  } catch (const JsonRefusal& r) {
+    throw ScenarioError(file, r.field(), r.reason());
   }
   return parse_scenario_document(doc, file);
 }
@@ -698,7 +577,7 @@ std::string body_force_field(const Scenario& s, int axis) {
 
 std::string component_field_path(const Scenario& s, std::string_view field) {
   if (field == "tick_s") return s.run.tick_field;
-  return join("component", field);
+  return join_key("component", field);
 }
 
 std::string gyro_field_path(const Scenario& s, std::string_view field) {
@@ -709,14 +588,14 @@ std::string gyro_field_path(const Scenario& s, std::string_view field) {
     if (field == "max_spin_hz") return "gyro.rotor.spin_hz";
     if (field == "stop_cone_rad") return "gyro.limits.gimbal_stop_rad";
     for (std::string_view k : field_keys(s.gyro.gimbal, nullptr)) {
-      if (k == field) return join("gyro.gimbal", field);
+      if (k == field) return join_key("gyro.gimbal", field);
     }
   }
   // The fields a scenario gives in gyro.rotor and gyro.limits.
   std::string in_section;
   const auto find = [&](const Field& f, const auto&) {
     if (in_section.empty() && f.section != nullptr && field_key(f) == field) {
-      in_section = join(join("gyro", f.section), field);
+      in_section = join_key(join_key("gyro", f.section), field);
     }
   };
   visit_fields(find, s.gyro.gyro);

@@ -31,7 +31,6 @@
 #include "run_table.hpp"
 #include "sil_runner.hpp"
 #include "statistics.hpp"
-#include "strict_json.hpp"
 
 namespace gyro::campaign {
 namespace {
@@ -278,7 +277,7 @@ TEST(CampaignFile, GivenTextThatIsNotJsonOrHasADuplicateKeyThenTheRefusalNamesWh
     const char* reason;
   } cases[] = {
       {"{ \"runs\": 10, }", "(document)", "not valid JSON: parse error at line 1"},
-      {"{ \"runs\": 10, \"seed\": 1, \"runs\": 20 }", "runs", "duplicate key (written twice in the same object)"},
+      {"{ \"runs\": 10, \"seed\": 1, \"runs\": 20 }", "runs", "duplicate key (a key may appear only once in an object)"},
       {"{ \"dispersions\": [ {}, { \"path\": \"a\", \"min\": 1, \"min\": 2 } ] }", "dispersions[1].min", "duplicate key"},
       {"{ \"base\": { \"gyro\": { \"rotor\": { \"friction\": 1, \"friction\": 2 } } } }", "base.gyro.rotor.friction",
        "duplicate key"},

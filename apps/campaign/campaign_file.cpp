@@ -33,35 +33,24 @@ std::string number_text(double v) {
   return std::string(buf.data(), r.ptr);
 }
 
-std::string describe(const json& v) {
-  if (v.is_object()) return "an object";
-  if (v.is_array()) return "an array";
-  return std::string(v.type_name()) + " " + v.dump();
-}
+using sil::at_index;
+using sil::describe_json;
 
 // One object of the campaign file: unknown keys refused up front, then typed fields.
 class Fields {
  public:
   Fields(const std::string& file, const json& j, std::string path, std::initializer_list<const char*> keys)
       : file_(file), j_(j), path_(std::move(path)) {
-    if (!j.is_object()) fail_at(path_, "expected an object, got " + describe(j));
-    std::vector<std::string> allowed(keys.begin(), keys.end());
-    for (const auto& item : j.items()) {
-      if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
-      std::string reason = "unknown key";
-      if (const std::optional<std::string> near = nearest_name(item.key(), allowed)) {
-        reason += " (did you mean \"" + *near + "\"?)";
-      } else {
-        std::string list;
-        for (const std::string& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-        reason += " (allowed: " + list + ")";
-      }
-      fail(item.key(), reason);
+    const std::vector<std::string_view> allowed(keys.begin(), keys.end());
+    try {
+      sil::check_object_keys(j, path_, allowed, sil::KeyJoin::kAsWritten);
+    } catch (const sil::JsonRefusal& r) {
+      throw CampaignError(file_, r.field(), r.reason());
     }
   }
 
   [[nodiscard]] std::string path_of(std::string_view key) const {
-    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+    return sil::join_key(path_, key, sil::KeyJoin::kAsWritten);
   }
   [[nodiscard]] bool has(std::string_view key) const { return j_.contains(key); }
   [[nodiscard]] const json& get(std::string_view key) const {
@@ -77,7 +66,7 @@ class Fields {
 
   [[nodiscard]] double number(std::string_view key) const { return number_at(get(key), path_of(key)); }
   [[nodiscard]] double number_at(const json& v, const std::string& path) const {
-    if (!v.is_number()) fail_at(path, "expected a number, got " + describe(v));
+    if (!v.is_number()) fail_at(path, "expected a number, got " + describe_json(v));
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail_at(path, "not a finite number");
     return d;
@@ -89,7 +78,7 @@ class Fields {
       const std::uint64_t u = v.get<std::uint64_t>();
       if (u >= lo && u <= hi) return u;
     } else if (!v.is_number_integer()) {
-      fail(key, "expected an integer, got " + describe(v));
+      fail(key, "expected an integer, got " + describe_json(v));
     }
     fail(key, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.dump());
   }
@@ -97,12 +86,12 @@ class Fields {
     if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX)) {
       fail_at(path, "must fit in a signed 64-bit integer, got " + v.dump());
     }
-    if (!v.is_number_integer()) fail_at(path, "expected an integer, got " + describe(v));
+    if (!v.is_number_integer()) fail_at(path, "expected an integer, got " + describe_json(v));
     return v.get<std::int64_t>();
   }
   [[nodiscard]] std::string text(std::string_view key) const {
     const json& v = get(key);
-    if (!v.is_string()) fail(key, "expected a string, got " + describe(v));
+    if (!v.is_string()) fail(key, "expected a string, got " + describe_json(v));
     return v.get<std::string>();
   }
   [[nodiscard]] std::string text(std::string_view key, const std::string& fallback) const {
@@ -110,7 +99,7 @@ class Fields {
   }
   [[nodiscard]] const json& array(std::string_view key) const {
     const json& v = get(key);
-    if (!v.is_array()) fail(key, "expected an array, got " + describe(v));
+    if (!v.is_array()) fail(key, "expected an array, got " + describe_json(v));
     return v;
   }
   // A number, or an interval [lo, hi] with lo <= hi.
@@ -125,7 +114,7 @@ class Fields {
                                      number_text(i.hi) + "]");
       return i;
     }
-    if (!v.is_number()) fail(key, "expected a number or an interval [lo, hi], got " + describe(v));
+    if (!v.is_number()) fail(key, "expected a number or an interval [lo, hi], got " + describe_json(v));
     const double d = number_at(v, p);
     return Interval{d, d};
   }
@@ -138,8 +127,6 @@ class Fields {
   std::string path_;
 };
 
-std::string at_index(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
-
 // The standard normal's CDF.
 double phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
@@ -150,7 +137,7 @@ json read_json_file(const std::filesystem::path& path, const std::string& refer_
   std::string why;
   const std::optional<std::string> text = sil::read_bounded(path.string(), sil::kMaxScenarioBytes, "a scenario", why);
   if (!text) throw CampaignError(campaign_file, field, "the base scenario \"" + refer_as + "\": " + why);
-  return parse_strict_json(*text, path.string());
+  return parse_campaign_json(*text, path.string());
 }
 
 bool overlaps(const std::vector<PathStep>& a, const std::vector<PathStep>& b) {
@@ -164,7 +151,7 @@ bool overlaps(const std::vector<PathStep>& a, const std::vector<PathStep>& b) {
 void apply_set(const Fields& top, json& base) {
   if (!top.has("set")) return;
   const json& set = top.get("set");
-  if (!set.is_object()) top.fail("set", "expected an object of \"json.path\": value, got " + describe(set));
+  if (!set.is_object()) top.fail("set", "expected an object of \"json.path\": value, got " + describe_json(set));
   std::vector<std::vector<PathStep>> done;
   for (const auto& item : set.items()) {
     const std::string field = top.path_of("set") + "." + item.key();
@@ -337,12 +324,12 @@ void check_target(const Fields& d, const json& base, Dispersion& out) {
       out.distribution != Distribution::kChoice ||
       std::all_of(out.values.begin(), out.values.end(), [](const json& v) { return v.is_number(); });
   if (out.distribution != Distribution::kChoice && !target->is_number()) {
-    d.fail("path", out.path + " is " + describe(*target) + ", not a number: only \"choice\" can disperse it");
+    d.fail("path", out.path + " is " + describe_json(*target) + ", not a number: only \"choice\" can disperse it");
   }
   if (out.apply != Apply::kSet) {
     if (!target->is_number()) {
       d.fail("apply", std::string("\"") + to_string(out.apply) + "\" needs a number at " + out.path + ", which is " +
-                          describe(*target));
+                          describe_json(*target));
     }
     if (!numeric_values) d.fail("apply", std::string("\"") + to_string(out.apply) + "\" needs numeric choice values");
   }
@@ -388,10 +375,6 @@ std::vector<Dispersion> parse_dispersions(const Fields& top, const json& base) {
 
 // ---- fault injection
 
-bool needs_magnitude(FaultKind k) {
-  return k == FaultKind::kBiasJump || k == FaultKind::kSaturatedTorquer || k == FaultKind::kSpinMotorFailure;
-}
-
 FaultOption parse_fault_option(const Fields& f, double duration_s) {
   FaultOption o;
   const std::string kind = f.text("kind");
@@ -433,7 +416,7 @@ FaultOption parse_fault_option(const Fields& f, double duration_s) {
       one(a, p);
     }
   }
-  if (needs_magnitude(*o.kind)) {
+  if (fault_needs_magnitude(*o.kind)) {
     if (!f.has("magnitude")) {
       f.fail("magnitude", "missing required field (needed by kind \"" + kind + "\")");
     }
@@ -509,7 +492,7 @@ std::optional<Window> parse_window(const Fields& m, std::string_view key, double
 bool flag(const Fields& m, std::string_view key) {
   if (!m.has(key)) return false;
   const json& v = m.get(key);
-  if (!v.is_boolean()) m.fail(key, "expected true or false, got " + describe(v));
+  if (!v.is_boolean()) m.fail(key, "expected true or false, got " + describe_json(v));
   return v.get<bool>();
 }
 
@@ -533,7 +516,7 @@ MetricSet parse_metrics(const Fields& m, double duration_s) {
     } else if (v.is_array()) {
       for (std::size_t i = 0; i < v.size(); ++i) {
         const std::string p = at_index(m.path_of("flag_counters"), i);
-        if (!v[i].is_string()) m.fail_at(p, "expected a flag name, got " + describe(v[i]));
+        if (!v[i].is_string()) m.fail_at(p, "expected a flag name, got " + describe_json(v[i]));
         const std::string name = v[i].get<std::string>();
         const auto it = std::find(names.begin(), names.end(), name);
         if (it == names.end()) {
@@ -548,7 +531,7 @@ MetricSet parse_metrics(const Fields& m, double duration_s) {
         out.flag_counters.push_back(bit);
       }
     } else {
-      m.fail("flag_counters", "expected true, false or a list of flag names, got " + describe(v));
+      m.fail("flag_counters", "expected true, false or a list of flag names, got " + describe_json(v));
     }
   }
   return out;
@@ -595,12 +578,12 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
     switch (col->type) {
       case ColumnType::kNumber: out.number = c.number("equals"); value_text = number_text(out.number); break;
       case ColumnType::kBoolean:
-        if (!v.is_boolean()) c.fail("equals", out.metric + " is true or false, got " + describe(v));
+        if (!v.is_boolean()) c.fail("equals", out.metric + " is true or false, got " + describe_json(v));
         out.text = v.get<bool>() ? "true" : "false";
         value_text = out.text;
         break;
       case ColumnType::kMode: {
-        if (!v.is_string()) c.fail("equals", out.metric + " is a mode name, got " + describe(v));
+        if (!v.is_string()) c.fail("equals", out.metric + " is a mode name, got " + describe_json(v));
         out.text = v.get<std::string>();
         bool known = false;
         for (GyroMode m : {GyroMode::kIdle, GyroMode::kCaged, GyroMode::kUncaging, GyroMode::kFree, GyroMode::kFault}) {
@@ -635,7 +618,7 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
       out.scope = RunScope::kKinds;
       for (std::size_t i = 0; i < r.size(); ++i) {
         const std::string p = at_index(c.path_of("runs"), i);
-        if (!r[i].is_string()) c.fail_at(p, "expected a fault kind, got " + describe(r[i]));
+        if (!r[i].is_string()) c.fail_at(p, "expected a fault kind, got " + describe_json(r[i]));
         const std::string k = r[i].get<std::string>();
         const bool injected = faults && std::any_of(faults->options.begin(), faults->options.end(), [&](const FaultOption& o) {
                                 return o.kind ? k == gyro::fault_kind_name(*o.kind) : k == "none";
@@ -644,7 +627,7 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
         out.kinds.push_back(k);
       }
     } else {
-      c.fail("runs", "expected \"all\", \"fault_free\", \"faulted\" or a non-empty list of fault kinds, got " + describe(r));
+      c.fail("runs", "expected \"all\", \"fault_free\", \"faulted\" or a non-empty list of fault kinds, got " + describe_json(r));
     }
     if ((out.scope == RunScope::kFaulted || out.scope == RunScope::kFaultFree) && !faults) {
       c.fail("runs", "this campaign injects no faults (\"fault_injection\")");
@@ -752,7 +735,7 @@ std::vector<MetricColumn> metric_columns(const MetricSet& m) {
 }
 
 Campaign parse_campaign(std::string_view json_text, const std::string& file, const std::filesystem::path& base_dir) {
-  json doc = parse_strict_json(json_text, file);
+  json doc = parse_campaign_json(json_text, file);
   Campaign c;
   c.file = file;
   const Fields top(c.file, doc, "",
@@ -772,7 +755,7 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
     c.base_source = "inline";
     c.base = base;
   } else {
-    top.fail("base", "expected a scenario file's path or a scenario object, got " + describe(base));
+    top.fail("base", "expected a scenario file's path or a scenario object, got " + describe_json(base));
   }
   json resolved = doc;
   resolved["base"] = c.base;
@@ -833,6 +816,14 @@ Campaign read_campaign(const std::filesystem::path& path) {
   const std::optional<std::string> text = sil::read_bounded(name, kMaxCampaignBytes, "a campaign file", why);
   if (!text) throw CampaignError(name, "(file)", why);
   return parse_campaign(*text, name, path.parent_path());
+}
+
+json parse_campaign_json(std::string_view text, const std::string& file) {
+  try {
+    return sil::parse_strict_json(text, kMaxCampaignDepth, sil::KeyJoin::kAsWritten);
+  } catch (const sil::JsonRefusal& r) {
+    throw CampaignError(file, r.field(), r.reason());
+  }
 }
 
 }  // namespace gyro::campaign

@@ -129,9 +129,17 @@ inline constexpr std::uint64_t kMaxRuns = 1'000'000;
 // be read back by merge and run.
 inline constexpr std::uint64_t kMaxCampaignBytes = 4u << 20;
 
+// Deepest nesting of arrays and objects accepted: a base scenario inline (the scenario's own
+// bound is 16 levels) inside the campaign, with room to spare.
+inline constexpr std::size_t kMaxCampaignDepth = 32;
+
 // Largest total of the fault injection's weights (the "cycle" pattern holds one entry per
 // unit of weight).
 inline constexpr std::uint64_t kMaxWeightTotal = 1'000'000;
+
+// Campaign or manifest text -> document by the strict reader (strict_json.hpp), nested at
+// most kMaxCampaignDepth levels. Throws CampaignError.
+[[nodiscard]] nlohmann::json parse_campaign_json(std::string_view text, const std::string& file);
 
 // Parses and checks the campaign; a base scenario given as a path is read relative to
 // `base_dir`. Throws CampaignError.

@@ -34,7 +34,6 @@
 #include "run_table.hpp"
 #include "signal_cleanup.hpp"
 #include "sil_runner.hpp"
-#include "strict_json.hpp"
 #include "summary.hpp"
 
 namespace {
@@ -418,7 +417,7 @@ int merge(const Options& o) {
     for (std::size_t d = 0; d < dirs.size(); ++d) {
       const fs::path& dir = dirs[d];
       const fs::path manifest_path = dir / "manifest.json";
-      const json m = parse_strict_json(read_file(manifest_path, kMaxManifestBytes, "a manifest"), manifest_path.string());
+      const json m = parse_campaign_json(read_file(manifest_path, kMaxManifestBytes, "a manifest"), manifest_path.string());
       if (!m.is_object() || !m.contains("campaign") || m["campaign"] != c.fingerprint) {
         throw CampaignError(manifest_path.string(), "campaign", "not " + c.fingerprint);
       }

@@ -57,6 +57,12 @@ inline constexpr const char* kFaultKindNames[kFaultKindCount] = {
   return k == FaultKind::kNone ? "" : (static_cast<std::size_t>(k) < std::size(kFaultKindNames) ? to_string(k) : "");
 }
 
+// Whether a fault of this kind acts through its `magnitude` (a file giving the kind must give
+// it): the bias jump, the saturated torquer's level, the spin failure's time constant.
+[[nodiscard]] constexpr bool fault_needs_magnitude(FaultKind k) noexcept {
+  return k == FaultKind::kBiasJump || k == FaultKind::kSaturatedTorquer || k == FaultKind::kSpinMotorFailure;
+}
+
 // The bit of a fault kind in active-fault words.
 [[nodiscard]] constexpr std::uint32_t fault_bit(FaultKind k) noexcept {
   return 1u << static_cast<std::uint32_t>(k);

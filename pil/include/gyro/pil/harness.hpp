@@ -42,7 +42,7 @@
 #include <utility>
 
 #include "gyro/component_types.hpp"
-#include "gyro/gyro_model.hpp"  // ConfigCheck
+#include "gyro/config_check.hpp"
 #include "gyro/link/byte_fifo.hpp"
 #include "gyro/link/frame.hpp"
 #include "gyro/link/frame_decoder.hpp"

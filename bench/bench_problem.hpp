@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "gyro/report_sample.hpp"
 #include "gyro/rotor_parameters.hpp"
 #include "gyro/rotor_transition.hpp"
 
@@ -25,7 +26,7 @@ using Vec2 = Vector2<double>;
 using Vec4 = Eigen::Matrix<double, 4, 1>;  // (theta, psi, w1, w2)
 
 // The report's sample run commands THTDCM = -0.19 rad/s (pitch) and PSIDCM = 0.013 rad/s (yaw).
-inline const Vec2 kSlewRadS{-0.19, 0.013};
+inline const Vec2 kSlewRadS = ReportSample<double>::slew_command();
 inline constexpr double kSimulatedSeconds = 1.0;
 inline constexpr double kAccuracyTargetRad = 1e-6;
 
@@ -82,9 +83,10 @@ inline const std::vector<double>& sweep_nutation_hz() {
 
 inline std::vector<Case> all_cases() {
   std::vector<Case> cases;
-  // The report's sample: J1 = 2.25, J2 = 2.0 slug ft^2, f = 5, J0 = 3, spin 100 Hz.
-  cases.push_back(make_case("report", "report sample (slug ft^2)", 2.25, 2.0, 5.0, 100.0, 3.0,
-                            false));
+  // The report's sample gyro, from gyro/report_sample.hpp (slug ft^2).
+  const GyroModelConfig<double> report = ReportSample<double>::config();
+  cases.push_back(make_case("report", "report sample (slug ft^2)", report.pitch_inertia, report.yaw_inertia,
+                            report.friction, ReportSample<double>::kSpinHz, report.spin_inertia, false));
   cases.push_back(seeker_case("seeker", "seeker, 400 Hz spin (SI)", 400.0, true));
   for (double nut : sweep_nutation_hz()) {
     char id[32];

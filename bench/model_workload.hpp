@@ -7,6 +7,7 @@
 #if __has_include("gyro/gyro_model.hpp")
 #define GYRO_BENCH_HAVE_MODEL 1
 #include "gyro/gyro_model.hpp"
+#include "gyro/report_sample.hpp"
 #include "bench_problem.hpp"
 
 namespace gyro::bench {
@@ -15,21 +16,12 @@ template <typename T>
 class ModelWorkload {
  public:
   ModelWorkload() {
-    GyroModelConfig<T> cfg;
-    cfg.pitch_inertia = T(2.25);
-    cfg.yaw_inertia = T(2.0);
-    cfg.spin_inertia = T(3.0);
-    cfg.friction = T(5.0);
-    cfg.gimbal_cone_limit_rad = T(0.4363323);
-    cfg.max_pitch_rate_rad_s = T(0.1745329);
-    cfg.max_yaw_rate_rad_s = T(0.1745329);
-    cfg.gravity = T(32.1725);
-    if (!model_.configure(cfg).ok()) fail("GyroModel::configure");
+    if (!model_.configure(ReportSample<T>::config()).ok()) fail("GyroModel::configure");
     if (model_.uncage(Matrix3<T>::Identity(), Vector2<T>::Zero()) != Status::kOk) {
       fail("GyroModel::uncage");
     }
     in_.dt_s = T(1e-3);
-    in_.spin_hz = T(100);
+    in_.spin_hz = ReportSample<T>::kSpinHz;
     const Case c = find_case("report");
     torque_[0] = Vector2<T>(static_cast<T>(c.torque(0)), static_cast<T>(c.torque(1)));
     torque_[1] = -torque_[0];

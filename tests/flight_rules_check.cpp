@@ -15,6 +15,7 @@
 #include "gyro/persistence.hpp"
 #include "gyro/rotor_parameters.hpp"
 #include "gyro/rotor_transition.hpp"
+#include "gyro/saturate.hpp"
 #include "gyro/scalar_traits.hpp"
 #include "gyro/seeker_component_example.hpp"
 #include "gyro/board/register_board_port.hpp"

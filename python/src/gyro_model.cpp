@@ -14,6 +14,7 @@
 #include "keyword_config.hpp"
 #include "errors.hpp"
 #include "gyro/gyro_model.hpp"
+#include "gyro/report_sample.hpp"
 
 namespace py = pybind11;
 
@@ -176,6 +177,17 @@ void bind_gyro_model(py::module_& m) {
   bind_model<float>(m, "GyroModelF32", "The report's gyro model (subroutine GYRO), float32.");
   m.attr("FLAG_GIMBAL_LIMIT") = static_cast<unsigned>(kFlagGimbalLimit);
   m.attr("FLAG_SMALL_ANGLE") = static_cast<unsigned>(kFlagSmallAngle);
+  // The report's sample run as gyro_report_sample drives it, for gyro.report_sample.
+  using Sample = ReportSample<double>;
+  py::dict sample;
+  sample["config"] = fields_to_dict(Sample::config());
+  sample["spin_hz"] = Sample::kSpinHz;
+  sample["body_rates"] = py::make_tuple(Sample::kBodyPitchRate, Sample::kBodyYawRate);
+  const Vector2<double> slew = Sample::slew_command();
+  sample["slew"] = py::make_tuple(slew(0), slew(1));
+  sample["steps"] = Sample::kSteps;
+  sample["initg_step"] = Sample::initg_step();
+  m.attr("_report_sample") = sample;
   m.def(
       "frame_rotation_y",
       [](const py::object& a) { return to_array(Eigen::Matrix3d(frame_rotation_y(real_scalar(a, "angle")))); },

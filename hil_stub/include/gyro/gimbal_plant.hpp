@@ -21,6 +21,7 @@
 #include "gyro/gimbal_kinematics.hpp"
 #include "gyro/gimbal_plant_config.hpp"
 #include "gyro/gimbal_stop.hpp"
+#include "gyro/saturate.hpp"
 
 namespace gyro {
 
@@ -218,7 +219,7 @@ class GimbalPlant {
   // Total angle between spin axis and body x.
   [[nodiscard]] T cone_rad() const noexcept {
     const T c = std::cos(state_.pitch_rad) * std::cos(state_.yaw_rad);
-    return std::acos(std::min(T(1), std::max(T(-1), c)));
+    return std::acos(saturate(c, T(1)));
   }
   [[nodiscard]] Vector3<T> spin_axis_body() const noexcept { return spin_axis_in_body(frames()); }
   // Spin relative to the inner gimbal, and the rotor's inertial rate about its axis.

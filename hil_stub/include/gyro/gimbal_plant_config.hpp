@@ -11,8 +11,10 @@
 #include <cmath>
 #include <cstdint>
 
+#include "gyro/attitude.hpp"  // Vector3
+#include "gyro/config_check.hpp"
 #include "gyro/config_fields.hpp"
-#include "gyro/gyro_model.hpp"  // ConfigCheck (and Status, all_finite, kPi, Vector2/3); no model code
+#include "gyro/rotor_parameters.hpp"  // all_finite, kPi, Vector2
 
 namespace gyro {
 

@@ -10,7 +10,6 @@
 // reading, invalid readings carry NaN angles (valid bit kept for one axis, cleared for both).
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -21,6 +20,7 @@
 #include "gyro/fault_schedule.hpp"
 #include "gyro/gyro_port.hpp"
 #include "gyro/noise.hpp"
+#include "gyro/saturate.hpp"
 
 namespace gyro {
 
@@ -137,12 +137,12 @@ class PickoffElectronics {
 
  private:
   [[nodiscard]] T quantise(T v) const noexcept {
-    if (model_.range_rad > T(0)) v = std::min(model_.range_rad, std::max(-model_.range_rad, v));
+    if (model_.range_rad > T(0)) v = saturate(v, model_.range_rad);
     if (model_.lsb_rad > T(0)) {
       T code = std::round(v / model_.lsb_rad);
       if (model_.range_rad > T(0)) {
         const T max_code = std::floor(model_.range_rad / model_.lsb_rad);
-        code = std::min(max_code, std::max(-max_code, code));
+        code = saturate(code, max_code);
       }
       v = code * model_.lsb_rad;
     }

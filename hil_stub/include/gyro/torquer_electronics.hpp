@@ -3,12 +3,12 @@
 // torquer faults (dead: 0, saturated: pinned at the fault's level).
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
 #include "gyro/config_fields.hpp"
 #include "gyro/fault_schedule.hpp"
+#include "gyro/saturate.hpp"
 
 namespace gyro {
 
@@ -41,7 +41,7 @@ template <typename T>
   Vector2<T> t = command.cwiseProduct(model.scale_factor);
   for (std::size_t i = 0; i < 2; ++i) {
     const auto axis = static_cast<Eigen::Index>(i);
-    if (model.max_torque > T(0)) t(axis) = std::min(model.max_torque, std::max(-model.max_torque, t(axis)));
+    if (model.max_torque > T(0)) t(axis) = saturate(t(axis), model.max_torque);
     if (faults.dead_torquer[i]) t(axis) = T(0);
     if (faults.saturated_torquer[i]) t(axis) = faults.saturated_level(axis);
   }

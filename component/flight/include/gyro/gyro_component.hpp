@@ -20,6 +20,7 @@
 #include "gyro/gyro_model.hpp"
 #include "gyro/gyro_port.hpp"
 #include "gyro/persistence.hpp"
+#include "gyro/saturate.hpp"
 #include "gyro/stop_protection.hpp"
 #include "gyro/torque_shaper.hpp"
 
@@ -321,7 +322,6 @@ class GyroComponent {
     return 0u;
   }
 
-  [[nodiscard]] static T clamp(T v, T limit) noexcept { return std::min(limit, std::max(-limit, v)); }
 
   // The gimbal frame the torque law and the stop protection resolve on: the estimator's, else
   // the pickoffs' (before the estimator runs, and without navigation, when the prediction
@@ -364,7 +364,7 @@ class GyroComponent {
     c.outward_rate_rad_s = p.outward_rate_rad_s;
     if (p.acting) c.flags |= kGimbalStopProtect;
     w = p.rate_rad_s;
-    c.rate_rad_s = Vector2<T>(clamp(w(0), config_.max_pitch_rate_rad_s), clamp(w(1), config_.max_yaw_rate_rad_s));
+    c.rate_rad_s = Vector2<T>(saturate(w(0), config_.max_pitch_rate_rad_s), saturate(w(1), config_.max_yaw_rate_rad_s));
     if (c.rate_rad_s != w) c.flags |= kSlewRateLimited;  // guidance (or the body) asks more than may be flown
     return c;
   }
@@ -391,8 +391,8 @@ class GyroComponent {
     const bool short_of_rate = (rate.flags & kSlewRateLimited) != 0u || s.saturated;
     if (rate.protecting && s.saturated) {
       const Vector2<T> outward = rate.outward * rate.outward_rate_rad_s;
-      const Vector2<T> outward_only(clamp(outward(0), config_.max_pitch_rate_rad_s),
-                                    clamp(outward(1), config_.max_yaw_rate_rad_s));
+      const Vector2<T> outward_only(saturate(outward(0), config_.max_pitch_rate_rad_s),
+                                    saturate(outward(1), config_.max_yaw_rate_rad_s));
       s = saturated_torque(frame, h, f, outward_only, body);
     }
     if (s.saturated) t.flags |= kTorquerSaturated;
@@ -457,7 +457,7 @@ class GyroComponent {
     // Written about the middle tap (equal taps give it back exactly); rounding can still pass
     // the limit by an ulp, hence the clamp.
     const Vector2<T> out = mid + shaper_edge_ * ((wanted - mid) + (old - mid));
-    return Vector2<T>(clamp(out(0), config_.max_torque), clamp(out(1), config_.max_torque));
+    return Vector2<T>(saturate(out(0), config_.max_torque), saturate(out(1), config_.max_torque));
   }
 
   // One saturating count per raised flag: a loop over the raised flags only (at most

@@ -13,6 +13,7 @@
 
 #include "gyro/config_fields.hpp"
 #include "gyro/rotor_parameters.hpp"
+#include "gyro/saturate.hpp"
 
 namespace gyro {
 
@@ -100,11 +101,6 @@ template <typename T>
 
 namespace detail {
 
-// x limited to [-limit, limit].
-template <typename T>
-[[nodiscard]] T clamp_abs(T x, T limit) noexcept {
-  return std::min(limit, std::max(-limit, x));
-}
 
 // The report's g-sensitive factor: only the acceleration beyond 1 g counts, in g.
 template <typename T>
@@ -167,8 +163,8 @@ template <typename T>
 // gyro's own dynamics (gyro_model_test, Coulomb friction).
 template <typename T>
 [[nodiscard]] Vector2<T> coulomb_drift(const GyroErrorSources<T>& e, const Vector2<T>& precession_rad_s) noexcept {
-  return Vector2<T>(-detail::clamp_abs(precession_rad_s(0), e.pitch.coulomb_friction_rad_s),
-                    -detail::clamp_abs(precession_rad_s(1), e.yaw.coulomb_friction_rad_s));
+  return Vector2<T>(-saturate(precession_rad_s(0), e.pitch.coulomb_friction_rad_s),
+                    -saturate(precession_rad_s(1), e.yaw.coulomb_friction_rad_s));
 }
 
 // Torquer cross-coupling in torque form: a pitch-rate drift c_p * (yaw-rate command) is the

@@ -20,6 +20,7 @@
 #include <cmath>
 
 #include "gyro/attitude.hpp"
+#include "gyro/saturate.hpp"
 
 namespace gyro {
 
@@ -125,8 +126,8 @@ template <typename T>
                                                          T roll) noexcept {
   constexpr T kMaxMove = T(0.5);
   if (!(std::abs(dth) <= kMaxMove && std::abs(roll) <= kMaxMove)) {  // rare: tested once
-    dth = std::min(kMaxMove, std::max(-kMaxMove, dth));
-    roll = std::min(kMaxMove, std::max(-kMaxMove, roll));
+    dth = saturate(dth, kMaxMove);
+    roll = saturate(roll, kMaxMove);
   }
   const T half_dth_sq = T(0.5) * dth * dth, half_roll_sq = T(0.5) * roll * roll;
   const T cos_pitch = f.cos_pitch - half_dth_sq * f.cos_pitch - dth * f.sin_pitch;

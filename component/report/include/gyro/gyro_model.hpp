@@ -18,6 +18,7 @@
 #include "gyro/gimbal_geometry.hpp"
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
+#include "gyro/saturate.hpp"
 
 namespace gyro {
 
@@ -195,8 +196,8 @@ class GyroModel {
   // limit), turned into torque for a frictionless gyro as the report's torquer does.
   [[nodiscard]] Status step_slew(const GyroStepInput<T>& in, const Vector2<T>& slew_rate_cmd_rad_s) noexcept {
     if (!all_finite(slew_rate_cmd_rad_s, in.spin_hz)) return Status::kNonFiniteInput;
-    const Vector2<T> limited(clamp(slew_rate_cmd_rad_s(0), config_.max_pitch_rate_rad_s),
-                             clamp(slew_rate_cmd_rad_s(1), config_.max_yaw_rate_rad_s));
+    const Vector2<T> limited(saturate(slew_rate_cmd_rad_s(0), config_.max_pitch_rate_rad_s),
+                             saturate(slew_rate_cmd_rad_s(1), config_.max_yaw_rate_rad_s));
     const T h = angular_momentum(in.spin_hz, config_.spin_inertia);
     if (config_.torquer_axes == TorquerAxes::kGimbal) {
       return step_torque(in, torquers_for_rate(frame(), h, T(0), limited, Vector2<T>(Vector2<T>::Zero())));
@@ -367,7 +368,7 @@ class GyroModel {
   [[nodiscard]] T gimbal_yaw_rad() const noexcept { return refresh_angles().yaw_rad; }
   [[nodiscard]] T gimbal_cosine_of_cone() const noexcept { return refresh_angles().cosine_of_cone; }
   [[nodiscard]] T gimbal_cone_rad() const noexcept {
-    return std::acos(std::min(T(1), std::max(T(-1), refresh_angles().cosine_of_cone)));
+    return std::acos(saturate(refresh_angles().cosine_of_cone, T(1)));
   }
   [[nodiscard]] std::uint32_t flags() const noexcept {
     (void)refresh_angles();
@@ -447,9 +448,6 @@ class GyroModel {
     return torque;
   }
 
-  [[nodiscard]] static T clamp(T v, T limit) noexcept {
-    return std::min(limit, std::max(-limit, v));
-  }
   // Total cone (the listing's GP(1) > COS(GIMBAL) test) and, if set, each axis against its
   // own limit (the listing compared an angle with a cosine).
   [[nodiscard]] std::uint32_t gimbal_flag(const GimbalAngles<T>& g) const noexcept {

@@ -30,7 +30,8 @@
 //               | u32 step timer counts | u8 gyro bytes G | u32 released | u32 cycles
 //               | u32 skipped | u32 overruns | u8 overrun | 10 x u32 port counters
 //               | 4 x u32 decoder counters                                           88
-//   telemetry   u32 tick | u8 mode | u32 flags | 15 x u32 counters | 19 R             69 + 19 R
+//   telemetry   u32 tick | u8 mode | u32 flags | 21 x u32 counters | 19 R             93 + 19 R
+//               (a counter per flag bit, kComponentFlagCount)
 //   stop        u8 reason                                                               1
 #pragma once
 
@@ -41,7 +42,7 @@
 #include <utility>
 
 #include "gyro/component_types.hpp"
-#include "gyro/gyro_model.hpp"  // ConfigCheck
+#include "gyro/config_check.hpp"
 #include "gyro/link/byte_fifo.hpp"
 #include "gyro/link/frame.hpp"
 #include "gyro/link/frame_decoder.hpp"

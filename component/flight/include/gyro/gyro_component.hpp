@@ -322,7 +322,6 @@ class GyroComponent {
     return 0u;
   }
 
-
   // The gimbal frame the torque law and the stop protection resolve on: the estimator's, else
   // the pickoffs' (before the estimator runs, and without navigation, when the prediction
   // holds the last good body attitude while the body turns on).

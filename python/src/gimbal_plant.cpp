@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "arrays.hpp"
@@ -20,6 +21,27 @@ namespace py = pybind11;
 namespace gyro::python {
 
 namespace {
+
+// What a refused step names: the torque or the body's motion beyond the plant's envelope, with
+// the value and the bound (the plant itself returns only kOutOfRange).
+template <typename T>
+std::string step_refusal(const GimbalPlantConfig<T>& c, const Vector2<T>& torque, const BodyState<T>& end) {
+  std::ostringstream why;
+  why.precision(6);
+  why << "GimbalPlant.step";
+  const T largest = torque.cwiseAbs().maxCoeff();
+  if (largest > c.max_torque) {
+    why << " (torque (" << torque(0) << ", " << torque(1) << ") is beyond max_torque " << c.max_torque
+        << ": the torquers cannot drive it)";
+  } else if (end.rate_rad_s.norm() > c.max_body_rate_rad_s) {
+    why << " (body_rate of norm " << end.rate_rad_s.norm() << " is beyond max_body_rate_rad_s "
+        << c.max_body_rate_rad_s << ")";
+  } else if (end.specific_force.norm() > c.max_specific_force) {
+    why << " (specific_force of norm " << end.specific_force.norm() << " is beyond max_specific_force "
+        << c.max_specific_force << ")";
+  }
+  return why.str();
+}
 
 // The plant and the body's motion at its last tick (the start of the next step).
 template <typename T>
@@ -90,7 +112,8 @@ void bind_plant(py::module_& m, const char* name, const char* doc) {
             const std::optional<V3> force = optional_matrix<V3>(force_arg, "specific_force");
             const BodyState<T> end = body_of(body_rate ? *body_rate : h.body.rate_rad_s,
                                              force ? *force : h.body.specific_force);
-            raise_if_failed(h.plant.step(torque, h.body, end), "GimbalPlant.step");
+            const Status stepped = h.plant.step(torque, h.body, end);
+            if (stepped != Status::kOk) raise_if_failed(stepped, step_refusal(h.plant.config(), torque, end));
             h.body = end;
           },
           py::arg("torque"), py::kw_only(), py::arg("body_rate") = py::none(), py::arg("specific_force") = py::none(),

@@ -74,4 +74,7 @@ def test_given_a_torque_beyond_the_envelope_when_stepped_then_refused_and_unchan
     with pytest.raises(gyro.StatusError) as e:
         plant.step([2.0, 0.0])
     assert e.value.status == gyro.Status.OUT_OF_RANGE
+    assert "torque (2, 0) is beyond max_torque" in str(e.value), str(e.value)
     assert np.array_equal(before[0], plant.gimbal_angle) and np.array_equal(before[1], plant.gimbal_rate)
+    with pytest.raises(gyro.StatusError, match=r"body_rate of norm 1e\+06 is beyond max_body_rate_rad_s"):
+        plant.step([1e-3, 0.0], body_rate=[1e6, 0.0, 0.0])

@@ -45,7 +45,8 @@ struct Frame {
 
 std::string join_key(const std::string& path, std::string_view key, KeyJoin how) {
   std::string out = path;
-  if (how == KeyJoin::kAsWritten || plain_key(key)) {
+  // An empty key is quoted either way: written as is it would name no field.
+  if ((how == KeyJoin::kAsWritten && !key.empty()) || plain_key(key)) {
     if (!out.empty()) out += '.';
     out += key;
   } else {

@@ -99,6 +99,7 @@ TEST(CampaignFile, GivenEachMalformedCampaignThenItIsRefusedNamingFieldAndReason
       // the top level
       {"unknown top key", [](json& j) { j["dispersion"] = json::array(); }, "dispersion",
        "unknown key (did you mean \"dispersions\"?)"},
+      {"an empty key", [](json& j) { j[""] = "valun"; }, "[\"\"]", "unknown key"},
       {"no base", [](json& j) { j.erase("base"); }, "base", "missing required field"},
       {"base not a scenario", [](json& j) { j["base"] = 5; }, "base", "expected a scenario file's path or a scenario object"},
       {"base file missing", [](json& j) { j["base"] = "scenarios/none.json"; }, "base",

@@ -115,7 +115,8 @@ void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
   const double friction = static_cast<double>(c.friction);
   const detail::RateMatrixTerms<double> terms = detail::rate_matrix_terms(RotorParameters<double>{j1, j2, friction, h});
   const double beta = terms.beta_sq > 0.0 ? std::sqrt(terms.beta_sq) : 0.0;
-  const std::uint32_t spacing = design_shaper(static_cast<T>(beta * tick)).spacing;
+  const ShaperDesign<T> shaper = design_shaper(static_cast<T>(beta * tick));  // the component's own design
+  const std::uint32_t spacing = shaper.spacing;
   if (beta > 0.0) {
     above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), kCageNutationShare * beta,
           "the nutation frequency / 4", "a faster caging loop or stop protection would drive the nutation it reads");
@@ -141,8 +142,7 @@ void check_all(const GyroComponentConfig<T>& c, Sink&& sink) noexcept {
       const detail::RateMatrixTerms<double> at_cone =
           detail::rate_matrix_terms(RotorParameters<double>{j1, j2_at_cone, friction, h});
       const double beta_at_cone = at_cone.beta_sq > 0.0 ? std::sqrt(at_cone.beta_sq) : 0.0;
-      const ShaperDesign<double> shaper = design_shaper(beta * tick);
-      if (shaper_leakage(shaper, beta_at_cone * tick) > kShaperLostLeakage) {
+      if (static_cast<double>(shaper_leakage(shaper, static_cast<T>(beta_at_cone * tick))) > kShaperLostLeakage) {
         above("cage_gain_1_s", static_cast<double>(c.cage_gain_1_s), at_cone.alpha - hold / std::sin(protect_cone),
               "the bearings' nutation damping at the protection cone less the stop protection's turn gain b / sin c_p",
               "the torque shaper passes more than half of the nutation at the protection cone (yaw inertia "

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <complex>
+#include <vector>
 
 #include "gyro/torque_shaper.hpp"
 
@@ -92,6 +93,66 @@ TEST(TorqueShaperLeakage, GivenANutationPhaseThenTheTapsGainThere) {
   EXPECT_DOUBLE_EQ(shaper_leakage(ShaperDesign<double>{}, 1.2), 1.0) << "no shaper passes all";
   // The seeker at 2 kHz, its nutation 3.8 times slower (held at 1.25 rad): 91 % passed.
   EXPECT_NEAR(shaper_leakage(design_shaper(1.88), 1.88 / 3.819), 0.909, 1e-3);
+}
+
+}  // namespace
+}  // namespace gyro
+
+namespace gyro {
+namespace {
+
+using V = Vector2<double>;
+
+TEST(TorqueShaperFilter, WithoutADesignTheTorqueIsWrittenAsAsked) {
+  TorqueShaper<double> s;
+  EXPECT_EQ(s.shape(V(0.3, -0.2), 0.1), V(0.3, -0.2)) << "unshaped: not even clamped";
+}
+
+TEST(TorqueShaperFilter, AStepComesOutInThreeTapsMTicksApart) {
+  TorqueShaper<double> s;
+  const ShaperDesign<double> d = design_shaper(0.5);  // m = 4
+  ASSERT_EQ(d.spacing, 4u);
+  s.use(d);
+  std::vector<double> out;
+  for (int k = 0; k < 12; ++k) out.push_back(s.shape(V(1.0, 0.0), 10.0)(0));
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(out[k], d.edge, 1e-15) << k;
+  for (std::size_t k = 4; k < 8; ++k) EXPECT_NEAR(out[k], 1 - d.edge, 1e-15) << k;
+  for (std::size_t k = 8; k < 12; ++k) EXPECT_EQ(out[k], 1.0) << "equal taps give the input back exactly";
+}
+
+TEST(TorqueShaperFilter, AStepExcitesNoNutationAtTheDesignPhase) {
+  // The filtered step's nutation: sum of its increments times e^{-i phi k}.
+  const double phi = 0.5;
+  TorqueShaper<double> s;
+  s.use(design_shaper(phi));
+  std::complex<double> excitation{0, 0};
+  double last = 0;
+  for (int k = 0; k < 40; ++k) {
+    const double u = s.shape(V(1.0, 1.0), 10.0)(1);
+    excitation += (u - last) * std::polar(1.0, -phi * k);
+    last = u;
+  }
+  EXPECT_LT(std::abs(excitation), 1e-14);
+}
+
+TEST(TorqueShaperFilter, TheOutputStaysWithinTheTorqueLimit) {
+  TorqueShaper<double> s;
+  s.use(design_shaper(2.9));
+  for (int k = 0; k < 20; ++k) {
+    const V t = s.shape(V(k % 2 == 0 ? 0.1 : -0.1, 0.1), 0.1);
+    EXPECT_LE(t.cwiseAbs().maxCoeff(), 0.1);
+  }
+}
+
+TEST(TorqueShaperFilter, ClearingStartsTheHistoryFromRest) {
+  TorqueShaper<double> s;
+  const ShaperDesign<double> d = design_shaper(0.5);
+  s.use(d);
+  for (int k = 0; k < 12; ++k) (void)s.shape(V(1.0, 1.0), 10.0);
+  s.clear();
+  EXPECT_NEAR(s.shape(V(0.0, 0.0), 10.0)(0), 0.0, 0.0);
+  s.clear();
+  EXPECT_NEAR(s.shape(V(1.0, 0.0), 10.0)(0), d.edge, 1e-15) << "the step starts again from its first tap";
 }
 
 }  // namespace

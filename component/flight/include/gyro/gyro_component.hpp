@@ -17,11 +17,15 @@
 
 #include "gyro/component_config.hpp"
 #include "gyro/component_types.hpp"
+#include "gyro/fault_monitors.hpp"
 #include "gyro/gyro_model.hpp"
 #include "gyro/gyro_port.hpp"
-#include "gyro/persistence.hpp"
+#include "gyro/mode_logic.hpp"
+#include "gyro/nutation_tracker.hpp"
+#include "gyro/pickoff_gate.hpp"
 #include "gyro/saturate.hpp"
 #include "gyro/stop_protection.hpp"
+#include "gyro/tick_tracker.hpp"
 #include "gyro/torque_shaper.hpp"
 
 namespace gyro {
@@ -29,7 +33,7 @@ namespace gyro {
 template <typename T>
 class GyroComponent {
  public:
-  explicit GyroComponent(GyroPort<T>& port) noexcept : port_(port) { wanted_history_.fill(Vector2<T>::Zero()); }
+  explicit GyroComponent(GyroPort<T>& port) noexcept : port_(port) {}
 
   // Validates and stores the configuration; only while idle (before activate()).
   [[nodiscard]] ConfigCheck configure(const GyroComponentConfig<T>& config) noexcept {
@@ -42,8 +46,7 @@ class GyroComponent {
     config_ = config;
     estimator_ = est;
     stop_bound_ = {std::sin(config.gimbal_cone_limit_rad - config.gimbal_stop_margin_rad), config.cage_gain_1_s};
-    nutation_spin_low_ = T(-1);  // the nutation and the shaper follow the new rotor
-    nutation_spin_high_ = T(-2);
+    nutation_.forget();  // the nutation and the shaper follow the new rotor
     configured_ = true;
     return c;
   }
@@ -65,20 +68,24 @@ class GyroComponent {
   [[nodiscard]] Status step(std::uint64_t tick, const GuidanceInput<T>& in) noexcept {
     if (mode_ == GyroMode::kIdle) return refuse(Status::kNotConfigured, kNotActive);
 
-    std::uint32_t flags = 0;
-    const std::uint64_t elapsed = elapsed_ticks(tick, flags);
+    const ElapsedTicks ticks = tick_tracker_.advance(tick, config_.max_tick_gap);
+    std::uint32_t flags = ticks.flags;
+    const std::uint64_t elapsed = ticks.ticks;
     const ModeRequest request = accept_command(in, flags);
     const bool nav_ok = accept_navigation(in, flags);
     const bool input_bad = (flags & kUnusableInput) != 0u;
 
-    const Reading r = read_and_validate(elapsed, flags);
+    const Reading r = read_and_validate(elapsed);
+    flags |= r.flags;
     const T spin = spin_hz(r);
     if (spin < config_.min_spin_hz) flags |= kSpinLow;
-    follow_nutation(spin);
+    const NutationUpdate<T> nutation = nutation_.follow(spin, config_);
+    if (nutation.redesigned) shaper_.use(nutation.shaper);
 
     predict_and_check(elapsed, spin, r.accepted && nav_ok, flags);
-    const bool fault_now = update_monitors(r.accepted, input_bad, flags);
-    flags |= update_mode(request, r.accepted && nav_ok, fault_now);
+    const FaultVerdict fault = monitors_.update(FaultConditions{!r.accepted, (flags & kSpinLow) != 0u, input_bad}, config_);
+    flags |= fault.flags;
+    flags |= enter(next_mode(mode_, {request, r.accepted && nav_ok, fault.fault, settle_ticks_, config_.uncage_settle_ticks}));
 
     const GimbalFrame<T>& frame = frame_now(nav_ok);
     const Vector2<T> body = nav_ok ? body_rate_on_gimbal(frame, body_rate_) : Vector2<T>::Zero();
@@ -86,12 +93,12 @@ class GyroComponent {
     const TorqueCommand wanted = torque_command(frame, rate, body, spin);
     flags |= rate.flags | wanted.flags;
     const Vector2<T> torque = shape_torque(wanted.torque);
-    if (port_.write_torquer(torque) == PortStatus::kOk) {
+    const bool written = port_.write_torquer(torque) == PortStatus::kOk;
+    monitors_.torquer_written(written);
+    if (written) {
       torque_held_ = torque;
-      torquer_fail_ = false;
     } else {
       flags |= kTorquerWriteFailed;  // the hardware keeps whatever it had: assume the last
-      torquer_fail_ = true;
     }
     if (mode_ == GyroMode::kFault) flags |= kFaultLatched;
 
@@ -112,6 +119,7 @@ class GyroComponent {
     bool accepted{false};
     bool port_ok{false};
     PickoffReading<T> raw{};
+    std::uint32_t flags{0};  // the gate's
   };
 
   [[nodiscard]] static bool valid_request(ModeRequest r) noexcept {
@@ -127,30 +135,6 @@ class GyroComponent {
     telemetry_.flags = flag;
     count(flag);
     return s;
-  }
-
-  // Ticks since the last call, from the tick count. The call itself is the clock (one per
-  // release of the rate group): a jump of 2..max_tick_gap after a trusted count is lost
-  // ticks, bridged (the held torque acted all along); anything else (a repeat, a step back,
-  // a longer jump, or any jump right after an untrusted count) is taken as one tick and the
-  // count resynchronised to it, to be trusted once the next call follows it by one.
-  [[nodiscard]] std::uint64_t elapsed_ticks(std::uint64_t tick, std::uint32_t& flags) noexcept {
-    std::uint64_t elapsed = 1;
-    bool trusted = true;
-    if (have_tick_ && tick != last_tick_ + 1u) {
-      const bool bridgeable = tick_trusted_ && tick > last_tick_ && tick - last_tick_ <= config_.max_tick_gap;
-      if (bridgeable) {
-        elapsed = tick - last_tick_;
-        flags |= kTickSkipped;
-      } else {
-        flags |= kTickInvalid;
-        trusted = false;
-      }
-    }
-    last_tick_ = tick;
-    have_tick_ = true;
-    tick_trusted_ = trusted;
-    return elapsed;
   }
 
   // The request (an unknown value is dropped) and the slew command (a non-finite one is
@@ -186,33 +170,14 @@ class GyroComponent {
     return true;
   }
 
-  // A reading is checked against the last accepted one, with a bound of max_pickoff_step_rad
-  // per tick that passed without information (invalid or stale readings, lost ticks): a gap
-  // in the readings never locks them out. A reading that jumped does not widen the bound: a
-  // bias jump stays rejected until its persistence latches the fault. In safe mode (torquers
-  // off) there is no jump test, so the reference follows the pickoffs and a wrong one cannot
-  // hold the gyro in safe mode.
-  [[nodiscard]] Reading read_and_validate(std::uint64_t elapsed, std::uint32_t& flags) noexcept {
+  // The pickoffs through the gate (gyro/pickoff_gate.hpp); in safe mode without the jump test.
+  [[nodiscard]] Reading read_and_validate(std::uint64_t elapsed) noexcept {
     Reading r;
     r.port_ok = port_.read_pickoffs(r.raw) == PortStatus::kOk;
-    const Vector2<T>& a = r.raw.gimbal_angle_rad;
-    const T bound = config_.max_pickoff_step_rad * (static_cast<T>(blind_ticks_) + static_cast<T>(elapsed));
-    if (!r.port_ok || !r.raw.valid || !all_finite(a) || a.cwiseAbs().maxCoeff() > config_.pickoff_range_rad) {
-      flags |= kPickoffInvalid;
-      blind_ticks_ = blind_ticks_ + elapsed;
-    } else if (have_reading_ && r.raw.sequence == last_sequence_) {
-      flags |= kPickoffStale;
-      blind_ticks_ = blind_ticks_ + elapsed;
-    } else if (have_reading_ && mode_ != GyroMode::kFault && (a - measured_).cwiseAbs().maxCoeff() > bound) {
-      flags |= kPickoffJump;
-      last_sequence_ = r.raw.sequence;
-    } else {
-      r.accepted = true;
-      measured_ = a;
-      last_sequence_ = r.raw.sequence;
-      have_reading_ = true;
-      blind_ticks_ = 0;
-    }
+    const PickoffVerdict v = pickoffs_.accept(r.raw, r.port_ok, elapsed, mode_ != GyroMode::kFault,
+                                              {config_.pickoff_range_rad, config_.max_pickoff_step_rad});
+    r.flags = v.flags;
+    r.accepted = v.accepted;
     return r;
   }
 
@@ -227,7 +192,7 @@ class GyroComponent {
 
   // The report's uncaging of the estimator at the measured gimbal angles, rates from the body.
   [[nodiscard]] bool start_estimator() noexcept {
-    if (estimator_.uncage_on_gimbal(attitude_.matrix(), body_rate_, measured_) != Status::kOk) return false;
+    if (estimator_.uncage_on_gimbal(attitude_.matrix(), body_rate_, pickoffs_.measured()) != Status::kOk) return false;
     predicted_ = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
     return true;
   }
@@ -254,72 +219,30 @@ class GyroComponent {
     if (estimator_.gimbal_limit_exceeded()) flags |= kGimbalLimit;
     predicted_ = Vector2<T>(estimator_.gimbal_pitch_rad(), estimator_.gimbal_yaw_rad());
     if (!measurable) return;
-    residual_ = measured_ - predicted_;
+    residual_ = pickoffs_.measured() - predicted_;
     if (mode_ == GyroMode::kFault) {
-      residual_monitor_.reset();
-    } else if (residual_monitor_.update(residual_.cwiseAbs().maxCoeff() > config_.residual_limit_rad,
-                                        config_.residual_persistence_ticks)) {
+      monitors_.reset_residual();
+    } else if (monitors_.residual(residual_.cwiseAbs().maxCoeff() > config_.residual_limit_rad,
+                                  config_.residual_persistence_ticks)) {
       flags |= kResidualFault;
     }
     (void)estimator_.correct_gimbal_angles_at_next_step(Vector2<T>(config_.estimator_gain * residual_));
   }
 
-  // The persistence monitors (gyro/persistence.hpp); true when any fault condition has lasted
-  // long enough. The torquer's is fed by the write of the previous tick.
-  [[nodiscard]] bool update_monitors(bool accepted, bool input_bad, std::uint32_t& flags) noexcept {
-    const GyroComponentConfig<T>& c = config_;
-    const bool reading = reading_monitor_.update(!accepted, c.invalid_persistence_ticks);
-    const bool spin = spin_monitor_.update((flags & kSpinLow) != 0u, c.spin_low_persistence_ticks);
-    const bool torquer = torquer_monitor_.update(torquer_fail_, c.torquer_fail_persistence_ticks);
-    const bool input = input_monitor_.update(input_bad, c.input_persistence_ticks);
-    if (input) flags |= kInputFault;
-    return reading || spin || torquer || input || residual_monitor_.tripped(c.residual_persistence_ticks);
-  }
-
-  // The mode's transition for this tick's request; kRequestRefused when the request could not
-  // be carried out (a request lasts one tick: it is dropped, never kept for later).
-  [[nodiscard]] std::uint32_t update_mode(ModeRequest request, bool measurable, bool fault_now) noexcept {
-    if (fault_now) {
-      mode_ = GyroMode::kFault;
-      return request == ModeRequest::kNone ? 0u : static_cast<std::uint32_t>(kRequestRefused);
+  // Carries out the mode logic's transition (gyro/mode_logic.hpp); its flags, and
+  // kRequestRefused when the estimator cannot start.
+  [[nodiscard]] std::uint32_t enter(const ModeTransition& m) noexcept {
+    if (m.estimator == EstimatorAction::kStart) {
+      if (!start_estimator()) return kRequestRefused;  // stays caged
+      estimator_ready_ = true;
+      residual_.setZero();  // the caged estimator's residual means nothing to the new start
+    } else if (m.estimator == EstimatorAction::kRestart) {
+      estimator_ready_ = false;  // restarts from the next good reading
+      monitors_.reset_residual();  // its fill from before the fault is gone
     }
-    switch (mode_) {
-      case GyroMode::kCaged:
-        if (request == ModeRequest::kUncage) {
-          // The report's uncaging: rates from the body, attitude from the body plus the
-          // measured gimbal offset. (The torque shaper keeps the cage loop's torques from
-          // leaving a nutation this start cannot know.)
-          if (!measurable || !start_estimator()) return kRequestRefused;
-          estimator_ready_ = true;
-          residual_.setZero();
-          settle_ticks_ = 0;
-          mode_ = GyroMode::kUncaging;
-        }
-        break;
-      case GyroMode::kUncaging:
-        if (request == ModeRequest::kCage) {
-          mode_ = GyroMode::kCaged;
-        } else if (++settle_ticks_ >= config_.uncage_settle_ticks) {
-          mode_ = GyroMode::kFree;
-        }
-        break;
-      case GyroMode::kFree:
-        if (request == ModeRequest::kCage) mode_ = GyroMode::kCaged;
-        break;
-      case GyroMode::kFault:
-        // Leaves safe mode on request as soon as no fault condition holds; the estimator
-        // restarts from the next good reading. Only caging leaves it.
-        if (request == ModeRequest::kUncage) return kRequestRefused;
-        if (request == ModeRequest::kCage) {
-          mode_ = GyroMode::kCaged;
-          estimator_ready_ = false;
-          residual_monitor_.reset();
-        }
-        break;
-      case GyroMode::kIdle:
-        break;
-    }
-    return 0u;
+    mode_ = m.mode;
+    settle_ticks_ = m.settle_ticks;
+    return m.flags;
   }
 
   // The gimbal frame the torque law and the stop protection resolve on: the estimator's, else
@@ -327,7 +250,7 @@ class GyroComponent {
   // holds the last good body attitude while the body turns on).
   [[nodiscard]] const GimbalFrame<T>& frame_now(bool nav_ok) noexcept {
     if (estimator_ready_ && nav_ok) return estimator_.gimbal_frame_now();
-    pickoff_frame_ = gimbal_frame_at(measured_);
+    pickoff_frame_ = gimbal_frame_at(pickoffs_.measured());
     return pickoff_frame_;
   }
 
@@ -349,8 +272,9 @@ class GyroComponent {
     if (mode_ == GyroMode::kCaged) {
       // Electrical caging: the spin axis follows the body and the gimbal angles close at
       // cage_gain (th' = -k th, ps' = -k ps); without navigation, the gimbal loop alone.
+      const Vector2<T>& g = pickoffs_.measured();
       w = body;
-      if (accepted) w -= config_.cage_gain_1_s * Vector2<T>(measured_(0), measured_(1) * frame.cos_pitch);
+      if (accepted) w -= config_.cage_gain_1_s * Vector2<T>(g(0), g(1) * frame.cos_pitch);
     } else if (mode_ == GyroMode::kFree) {
       w = slew_cmd_;
     }
@@ -445,18 +369,10 @@ class GyroComponent {
   // m would pass kShaperMaxSpacing; safe mode cuts at once.
   [[nodiscard]] Vector2<T> shape_torque(const Vector2<T>& wanted) noexcept {
     if (mode_ == GyroMode::kFault) {
-      wanted_history_.fill(Vector2<T>::Zero());  // leaving safe mode starts from rest
+      shaper_.clear();  // leaving safe mode starts from rest
       return wanted;
     }
-    wanted_head_ = (wanted_head_ + 1u) & kShaperMask;
-    wanted_history_[wanted_head_] = wanted;
-    if (shaper_spacing_ == 0u) return wanted;
-    const Vector2<T>& mid = wanted_history_[(wanted_head_ - shaper_spacing_) & kShaperMask];
-    const Vector2<T>& old = wanted_history_[(wanted_head_ - 2u * shaper_spacing_) & kShaperMask];
-    // Written about the middle tap (equal taps give it back exactly); rounding can still pass
-    // the limit by an ulp, hence the clamp.
-    const Vector2<T> out = mid + shaper_edge_ * ((wanted - mid) + (old - mid));
-    return Vector2<T>(saturate(out(0), config_.max_torque), saturate(out(1), config_.max_torque));
+    return shaper_.shape(wanted, config_.max_torque);
   }
 
   // One saturating count per raised flag: a loop over the raised flags only (at most
@@ -481,13 +397,13 @@ class GyroComponent {
   }
 
   void publish(std::uint64_t tick, std::uint32_t flags, const Vector2<T>& rate_cmd, T spin) noexcept {
-    if (estimator_ready_ && nutation_aliased_) flags |= kNutationUnresolved;
+    if (estimator_ready_ && nutation_.aliased()) flags |= kNutationUnresolved;
     GyroTelemetry<T>& t = telemetry_;
     t.tick = tick;
     t.mode = mode_;
     t.flags = flags;
     count(flags);
-    t.gimbal_measured_rad = measured_;
+    t.gimbal_measured_rad = pickoffs_.measured();
     t.gimbal_predicted_rad = predicted_;
     t.residual_rad = residual_;
     t.attitude_gyro_to_earth = estimator_.attitude_gyro_to_earth();
@@ -496,33 +412,6 @@ class GyroComponent {
     t.torque_cmd = torque_held_;
     t.nutation_amplitude_rad = estimator_.nutation_amplitude_rad();
     t.spin_hz = spin;
-  }
-
-  // Once per tick: the nutation frequency at this spin (0 if the modes cannot be computed),
-  // whether the tick aliases it, and the shaper designed for it, all kept until the spin moves
-  // kShaperSpinTolerance away from the spin they were made for. A spinning-down rotor's
-  // readback changes every tick; the notch is not that narrow (a relative error e in beta lets
-  // through about 2 e of the nutation a step of torque excites, and the plant's own beta moves
-  // by more with the gimbal angles), so the design is redone every few hundred ticks of a
-  // spin-down, not every tick. (The estimator follows every readback: its transition is
-  // physics.)
-  void follow_nutation(T spin) noexcept {
-    if (!(spin >= nutation_spin_low_ && spin <= nutation_spin_high_)) {
-      // The spin is finite and >= 0 and the inertias and friction were checked at configure():
-      // the rate-matrix terms alone (compute_modes() without its checks and other modes).
-      const RotorParameters<T> p{config_.pitch_inertia, config_.yaw_inertia, config_.friction,
-                                 angular_momentum(spin, config_.spin_inertia)};
-      const T beta_sq = detail::rate_matrix_terms(p).beta_sq;
-      nutation_beta_ = (beta_sq > T(0) && std::isfinite(beta_sq)) ? std::sqrt(beta_sq) : T(0);
-      nutation_spin_low_ = spin * (T(1) - kShaperSpinTolerance<T>);
-      nutation_spin_high_ = spin * (T(1) + kShaperSpinTolerance<T>);
-      const T per_tick = nutation_beta_ * config_.tick_s;  // nutation phase a tick
-      // Fewer than two ticks per nutation period: the pickoffs alias the nutation.
-      nutation_aliased_ = per_tick > kPi<T>;
-      const ShaperDesign<T> shaper = design_shaper(per_tick);
-      shaper_spacing_ = shaper.spacing;
-      shaper_edge_ = shaper.edge;
-    }
   }
 
   GyroPort<T>& port_;
@@ -536,42 +425,17 @@ class GyroComponent {
   Vector3<T> body_rate_{Vector3<T>::Zero()};       // the last usable body rate (p, q, r)
   Vector3<T> body_rate_prev_{Vector3<T>::Zero()};  // the one before it
   Vector2<T> slew_cmd_{Vector2<T>::Zero()};  // the last usable slew command
-  Vector2<T> measured_{Vector2<T>::Zero()};
   Vector2<T> residual_{Vector2<T>::Zero()};
   Vector2<T> predicted_{Vector2<T>::Zero()};  // the estimator's gimbal angles before correction
   GimbalFrame<T> pickoff_frame_{};  // the frame at the pickoffs' angles, before the estimator runs
   GyroStepInput<T> step_input_{};   // the estimator's step input (its attitude is passed checked)
   Vector2<T> torque_held_{Vector2<T>::Zero()};
-  std::uint32_t last_sequence_{0};
-  bool have_reading_{false};
-  std::uint64_t blind_ticks_{0};  // ticks without an informative reading since the last accepted
-  std::uint64_t last_tick_{0};
-  bool have_tick_{false};
-  bool tick_trusted_{false};
-  bool torquer_fail_{false};
-  PersistenceMonitor reading_monitor_{};
-  PersistenceMonitor residual_monitor_{};
-  PersistenceMonitor spin_monitor_{};
-  PersistenceMonitor torquer_monitor_{};
-  PersistenceMonitor input_monitor_{};
+  TickTracker tick_tracker_{};
+  PickoffGate<T> pickoffs_{};
+  FaultMonitors monitors_{};
   std::uint32_t settle_ticks_{0};
-  T nutation_spin_low_{-1};  // the spins the shaper's design is kept for (follow_nutation)
-  T nutation_spin_high_{-2};
-  T nutation_beta_{};
-  bool nutation_aliased_{false};
-  // The shaper's design follows the spin within this fraction (follow_nutation).
-  template <typename S>
-  static constexpr S kShaperSpinTolerance = S(1e-3);
-  // The torque shaper (shape_torque): the torque law's last outputs (2 kShaperMaxSpacing + 1 read).
-  // A power of two of at least 2 kShaperMaxSpacing + 1 entries: the ring's index is masked (the
-  // unsigned difference wraps to the same entry), not divided.
-  static constexpr std::uint32_t kShaperLength = 32;
-  static constexpr std::uint32_t kShaperMask = kShaperLength - 1u;
-  static_assert((kShaperLength & kShaperMask) == 0u && kShaperLength >= 2u * kShaperMaxSpacing + 1u);
-  std::array<Vector2<T>, kShaperLength> wanted_history_{};
-  std::uint32_t wanted_head_{0};
-  std::uint32_t shaper_spacing_{0};  // m; 0: not shaped
-  T shaper_edge_{};                  // a
+  NutationTracker<T> nutation_{};
+  TorqueShaper<T> shaper_{};
   GyroTelemetry<T> telemetry_{};
 };
 

@@ -10,10 +10,12 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
 #include "gyro/rotor_parameters.hpp"
+#include "gyro/saturate.hpp"
 
 namespace gyro {
 
@@ -60,5 +62,43 @@ template <typename T>
   if (d.spacing == 0u) return T(1);
   return std::abs(T(1) - T(2) * d.edge * (T(1) - std::cos(static_cast<T>(d.spacing) * folded_phase(per_tick))));
 }
+
+// The filter itself: the torque law's last outputs through the design in use. A step of
+// torque sets the rotor nutating (amplitude dT / (H beta)), and the plant's nutation then
+// drifts out of phase with the estimator's; through the shaper a step excites no nutation at
+// beta, for m ticks of delay.
+template <typename T>
+class TorqueShaper {
+ public:
+  TorqueShaper() noexcept { clear(); }  // Eigen leaves its vectors unset
+  void use(const ShaperDesign<T>& d) noexcept { design_ = d; }
+  [[nodiscard]] const ShaperDesign<T>& design() const noexcept { return design_; }
+
+  // The torque to write for the law's `wanted`, within +-max_torque.
+  [[nodiscard]] Vector2<T> shape(const Vector2<T>& wanted, T max_torque) noexcept {
+    head_ = (head_ + 1u) & kMask;
+    history_[head_] = wanted;
+    if (design_.spacing == 0u) return wanted;
+    const Vector2<T>& mid = history_[(head_ - design_.spacing) & kMask];
+    const Vector2<T>& old = history_[(head_ - 2u * design_.spacing) & kMask];
+    // Written about the middle tap (equal taps give it back exactly); rounding can still pass
+    // the limit by an ulp, hence the clamp.
+    const Vector2<T> out = mid + design_.edge * ((wanted - mid) + (old - mid));
+    return Vector2<T>(saturate(out(0), max_torque), saturate(out(1), max_torque));
+  }
+
+  // Forgets the history: the next torques start from rest.
+  void clear() noexcept { history_.fill(Vector2<T>::Zero()); }
+
+ private:
+  // A power of two of at least 2 kShaperMaxSpacing + 1 entries: the ring's index is masked (the
+  // unsigned difference wraps to the same entry), not divided.
+  static constexpr std::uint32_t kLength = 32;
+  static constexpr std::uint32_t kMask = kLength - 1u;
+  static_assert((kLength & kMask) == 0u && kLength >= 2u * kShaperMaxSpacing + 1u);
+  std::array<Vector2<T>, kLength> history_;
+  std::uint32_t head_{0};
+  ShaperDesign<T> design_{};
+};
 
 }  // namespace gyro

@@ -1,0 +1,76 @@
+// The fault monitors (gyro/fault_monitors.hpp): each condition latches safe mode once it
+// persists; the input fault is flagged; the torquer's is fed by the last write.
+#include <gtest/gtest.h>
+
+#include "gyro/fault_monitors.hpp"
+
+namespace gyro {
+namespace {
+
+struct Persistences {
+  std::uint32_t invalid_persistence_ticks{3};
+  std::uint32_t spin_low_persistence_ticks{4};
+  std::uint32_t torquer_fail_persistence_ticks{5};
+  std::uint32_t input_persistence_ticks{6};
+  std::uint32_t residual_persistence_ticks{7};
+};
+
+// The ticks until `monitors` latch with the same conditions each tick (0: not in 100).
+template <typename Feed>
+int ticks_to_fault(Feed feed) {
+  FaultMonitors m;
+  for (int k = 1; k <= 100; ++k) {
+    if (feed(m).fault) return k;
+  }
+  return 0;
+}
+
+TEST(FaultMonitors, EachConditionLatchesAfterItsPersistence) {
+  const Persistences p;
+  EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) { return m.update(FaultConditions{true, false, false}, p); }), 3);
+  EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) { return m.update(FaultConditions{false, true, false}, p); }), 4);
+  EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) { return m.update(FaultConditions{false, false, true}, p); }), 6);
+  EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) {
+              m.torquer_written(false);
+              return m.update(FaultConditions{}, p);
+            }),
+            5);
+  EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) {
+              (void)m.residual(true, p.residual_persistence_ticks);
+              return m.update(FaultConditions{}, p);
+            }),
+            7);
+  EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) { return m.update(FaultConditions{}, p); }), 0);
+}
+
+TEST(FaultMonitors, OnlyThePersistedInputConditionIsFlagged) {
+  const Persistences p;
+  FaultMonitors m;
+  for (int k = 1; k < 6; ++k) EXPECT_EQ(m.update(FaultConditions{false, false, true}, p).flags, 0u);
+  EXPECT_EQ(m.update(FaultConditions{false, false, true}, p).flags, static_cast<std::uint32_t>(kInputFault));
+  FaultMonitors reading;
+  for (int k = 1; k <= 3; ++k) EXPECT_EQ(reading.update(FaultConditions{true, false, false}, p).flags, 0u);
+}
+
+TEST(FaultMonitors, ResettingTheResidualClearsItsFill) {
+  const Persistences p;
+  FaultMonitors m;
+  for (int k = 1; k < 7; ++k) EXPECT_FALSE(m.residual(true, p.residual_persistence_ticks));
+  m.reset_residual();
+  EXPECT_FALSE(m.residual(true, p.residual_persistence_ticks));
+  EXPECT_FALSE(m.update(FaultConditions{}, p).fault);
+}
+
+TEST(FaultMonitors, AGoodWriteClearsTheTorquerCondition) {
+  const Persistences p;
+  FaultMonitors m;
+  for (int k = 0; k < 4; ++k) {
+    m.torquer_written(false);
+    EXPECT_FALSE(m.update(FaultConditions{}, p).fault);
+  }
+  m.torquer_written(true);
+  EXPECT_FALSE(m.update(FaultConditions{}, p).fault) << "the fill drains";
+}
+
+}  // namespace
+}  // namespace gyro

@@ -1,0 +1,97 @@
+// The pickoff gate (gyro/pickoff_gate.hpp): invalid, stale and jumped readings refused; the
+// jump bound widens with the ticks that passed without information.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "gyro/pickoff_gate.hpp"
+
+namespace gyro {
+namespace {
+
+constexpr PickoffLimits<double> kLimits{0.5, 0.01};
+
+PickoffReading<double> reading(double pitch, double yaw, std::uint32_t sequence) {
+  PickoffReading<double> r;
+  r.gimbal_angle_rad = Vector2<double>(pitch, yaw);
+  r.sequence = sequence;
+  r.valid = true;
+  return r;
+}
+
+TEST(PickoffGate, AValidFreshReadingIsAcceptedAndKept) {
+  PickoffGate<double> g;
+  const PickoffVerdict v = g.accept(reading(0.1, -0.2, 1), true, 1, true, kLimits);
+  EXPECT_TRUE(v.accepted);
+  EXPECT_EQ(v.flags, 0u);
+  EXPECT_EQ(g.measured(), Vector2<double>(0.1, -0.2));
+}
+
+TEST(PickoffGate, UnusableReadingsAreInvalidAndNotKept) {
+  PickoffGate<double> g;
+  (void)g.accept(reading(0.1, 0.1, 1), true, 1, true, kLimits);
+  PickoffReading<double> unset = reading(0.1, 0.1, 2);
+  unset.valid = false;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& [r, port_ok] : {std::pair{reading(0.1, 0.1, 3), false}, std::pair{unset, true},
+                                   std::pair{reading(nan, 0.1, 4), true}, std::pair{reading(0.1, 0.51, 5), true}}) {
+    const PickoffVerdict v = g.accept(r, port_ok, 1, true, kLimits);
+    EXPECT_FALSE(v.accepted);
+    EXPECT_EQ(v.flags, static_cast<std::uint32_t>(kPickoffInvalid));
+  }
+  EXPECT_EQ(g.measured(), Vector2<double>(0.1, 0.1));
+  EXPECT_TRUE(g.accept(reading(0.1, 0.5, 6), true, 1, false, kLimits).accepted) << "the range is inclusive";
+}
+
+TEST(PickoffGate, AnUnchangedSequenceIsStale) {
+  PickoffGate<double> g;
+  (void)g.accept(reading(0.1, 0.1, 7), true, 1, true, kLimits);
+  const PickoffVerdict v = g.accept(reading(0.1, 0.1, 7), true, 1, true, kLimits);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_EQ(v.flags, static_cast<std::uint32_t>(kPickoffStale));
+}
+
+TEST(PickoffGate, TheFirstReadingIsNeverStaleNorAJump) {
+  PickoffGate<double> g;
+  EXPECT_TRUE(g.accept(reading(0.4, 0.0, 0), true, 1, true, kLimits).accepted);
+}
+
+TEST(PickoffGate, AJumpIsRefusedAndDoesNotWidenTheBound) {
+  PickoffGate<double> g;
+  (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
+  EXPECT_EQ(g.accept(reading(0.0101, 0.0, 2), true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffJump));
+  EXPECT_EQ(g.accept(reading(0.0101, 0.0, 3), true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffJump))
+      << "a bias jump stays refused";
+  EXPECT_EQ(g.accept(reading(0.0101, 0.0, 3), true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffStale))
+      << "the jumped reading's sequence was recorded";
+}
+
+TEST(PickoffGate, TheJumpBoundIsInclusive) {
+  PickoffGate<double> g;
+  constexpr PickoffLimits<double> limits{0.5, 0.125};  // exact in binary
+  (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, limits);
+  EXPECT_TRUE(g.accept(reading(0.0, -0.125, 2), true, 1, true, limits).accepted);
+}
+
+TEST(PickoffGate, TheBoundWidensWithTicksWithoutInformation) {
+  PickoffGate<double> g;
+  (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
+  (void)g.accept(reading(0.0, 0.0, 1), true, 2, true, kLimits);  // stale over 2 ticks
+  PickoffReading<double> unset = reading(0.0, 0.0, 2);
+  unset.valid = false;
+  (void)g.accept(unset, true, 1, true, kLimits);  // invalid: 3 blind ticks
+  EXPECT_FALSE(g.accept(reading(0.0, 0.0501, 3), true, 2, true, kLimits).accepted) << "5 ticks: 0.05";
+  EXPECT_TRUE(g.accept(reading(0.0, 0.0499, 4), true, 2, true, kLimits).accepted);
+  EXPECT_EQ(g.accept(reading(0.0, 0.0701, 5), true, 2, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffJump))
+      << "accepted: the blind ticks start again";
+}
+
+TEST(PickoffGate, WithoutTheJumpTestTheReferenceFollows) {
+  PickoffGate<double> g;
+  (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
+  EXPECT_TRUE(g.accept(reading(0.3, 0.0, 2), true, 1, false, kLimits).accepted);
+  EXPECT_EQ(g.measured()(0), 0.3);
+}
+
+}  // namespace
+}  // namespace gyro

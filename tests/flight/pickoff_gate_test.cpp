@@ -79,10 +79,11 @@ TEST(PickoffGate, TheBoundWidensWithTicksWithoutInformation) {
   (void)g.accept(reading(0.0, 0.0, 1), true, 2, true, kLimits);  // stale over 2 ticks
   PickoffReading<double> unset = reading(0.0, 0.0, 2);
   unset.valid = false;
-  (void)g.accept(unset, true, 1, true, kLimits);  // invalid: 3 blind ticks
-  EXPECT_FALSE(g.accept(reading(0.0, 0.0501, 3), true, 2, true, kLimits).accepted) << "5 ticks: 0.05";
-  EXPECT_TRUE(g.accept(reading(0.0, 0.0499, 4), true, 2, true, kLimits).accepted);
-  EXPECT_EQ(g.accept(reading(0.0, 0.0701, 5), true, 2, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffJump))
+  (void)g.accept(unset, true, 1, true, kLimits);                  // invalid: 3 blind ticks
+  (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);  // stale again: 4
+  EXPECT_FALSE(g.accept(reading(0.0, 0.0601, 3), true, 2, true, kLimits).accepted) << "6 ticks: 0.06";
+  EXPECT_TRUE(g.accept(reading(0.0, 0.0599, 4), true, 2, true, kLimits).accepted);
+  EXPECT_EQ(g.accept(reading(0.0, 0.0801, 5), true, 2, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffJump))
       << "accepted: the blind ticks start again";
 }
 

@@ -9,10 +9,14 @@
 #include "gyro/config_check.hpp"
 #include "gyro/config_fields.hpp"
 #include "gyro/error_sources.hpp"
+#include "gyro/fault_monitors.hpp"
 #include "gyro/gimbal_geometry.hpp"
 #include "gyro/exact_step_check.hpp"
+#include "gyro/mode_logic.hpp"
 #include "gyro/nutation.hpp"
+#include "gyro/nutation_tracker.hpp"
 #include "gyro/persistence.hpp"
+#include "gyro/pickoff_gate.hpp"
 #include "gyro/rotor_parameters.hpp"
 #include "gyro/rotor_transition.hpp"
 #include "gyro/saturate.hpp"
@@ -21,6 +25,7 @@
 #include "gyro/board/register_board_port.hpp"
 #include "gyro/status.hpp"
 #include "gyro/stop_protection.hpp"
+#include "gyro/tick_tracker.hpp"
 #include "gyro/torque_shaper.hpp"
 
 namespace gyro {

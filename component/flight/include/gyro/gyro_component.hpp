@@ -75,21 +75,25 @@ class GyroComponent {
     const bool nav_ok = accept_navigation(in, flags);
     const bool input_bad = (flags & kUnusableInput) != 0u;
 
-    const Reading r = read_and_validate(elapsed);
-    flags |= r.flags;
+    Reading r;
+    r.port_ok = port_.read_pickoffs(r.raw) == PortStatus::kOk;
+    // The pickoffs through the gate (gyro/pickoff_gate.hpp); in safe mode without the jump test.
+    const PickoffVerdict pick = pickoffs_.accept(r.raw, r.port_ok, elapsed, mode_ != GyroMode::kFault,
+                                                 {config_.pickoff_range_rad, config_.max_pickoff_step_rad});
+    flags |= pick.flags;
     const T spin = spin_hz(r);
     if (spin < config_.min_spin_hz) flags |= kSpinLow;
     const NutationUpdate<T> nutation = nutation_.follow(spin, config_);
     if (nutation.redesigned) shaper_.use(nutation.shaper);
 
-    predict_and_check(elapsed, spin, r.accepted && nav_ok, flags);
-    const FaultVerdict fault = monitors_.update(FaultConditions{!r.accepted, (flags & kSpinLow) != 0u, input_bad}, config_);
+    predict_and_check(elapsed, spin, pick.accepted && nav_ok, flags);
+    const FaultVerdict fault = monitors_.update(FaultConditions{!pick.accepted, (flags & kSpinLow) != 0u, input_bad}, config_);
     flags |= fault.flags;
-    flags |= enter(next_mode(mode_, {request, r.accepted && nav_ok, fault.fault, settle_ticks_, config_.uncage_settle_ticks}));
+    flags |= enter(next_mode(mode_, {request, pick.accepted && nav_ok, fault.fault, settle_ticks_, config_.uncage_settle_ticks}));
 
     const GimbalFrame<T>& frame = frame_now(nav_ok);
     const Vector2<T> body = nav_ok ? body_rate_on_gimbal(frame, body_rate_) : Vector2<T>::Zero();
-    const RateCommand rate = rate_command(frame, body, r.accepted);
+    const RateCommand rate = rate_command(frame, body, pick.accepted);
     const TorqueCommand wanted = torque_command(frame, rate, body, spin);
     flags |= rate.flags | wanted.flags;
     const Vector2<T> torque = shape_torque(wanted.torque);
@@ -116,10 +120,8 @@ class GyroComponent {
   static constexpr std::uint32_t kUnusableInput = kCommandRejected | kTickInvalid;
 
   struct Reading {
-    bool accepted{false};
     bool port_ok{false};
     PickoffReading<T> raw{};
-    std::uint32_t flags{0};  // the gate's
   };
 
   [[nodiscard]] static bool valid_request(ModeRequest r) noexcept {
@@ -168,17 +170,6 @@ class GyroComponent {
     body_rate_prev_ = body_rate_;
     body_rate_ = in.body_rate_rad_s;
     return true;
-  }
-
-  // The pickoffs through the gate (gyro/pickoff_gate.hpp); in safe mode without the jump test.
-  [[nodiscard]] Reading read_and_validate(std::uint64_t elapsed) noexcept {
-    Reading r;
-    r.port_ok = port_.read_pickoffs(r.raw) == PortStatus::kOk;
-    const PickoffVerdict v = pickoffs_.accept(r.raw, r.port_ok, elapsed, mode_ != GyroMode::kFault,
-                                              {config_.pickoff_range_rad, config_.max_pickoff_step_rad});
-    r.flags = v.flags;
-    r.accepted = v.accepted;
-    return r;
   }
 
   [[nodiscard]] T spin_hz(const Reading& r) const noexcept {

@@ -72,7 +72,6 @@ class TorqueShaper {
  public:
   TorqueShaper() noexcept { clear(); }  // Eigen leaves its vectors unset
   void use(const ShaperDesign<T>& d) noexcept { design_ = d; }
-  [[nodiscard]] const ShaperDesign<T>& design() const noexcept { return design_; }
 
   // The torque to write for the law's `wanted`, within +-max_torque.
   [[nodiscard]] Vector2<T> shape(const Vector2<T>& wanted, T max_torque) noexcept {

@@ -7,7 +7,10 @@
 namespace gyro {
 namespace {
 
+const Vector2<double> kOver(0.0, -2e-3);  // beyond a limit of 1e-3 rad in one axis
+
 struct Persistences {
+  double residual_limit_rad{1e-3};
   std::uint32_t invalid_persistence_ticks{3};
   std::uint32_t spin_low_persistence_ticks{4};
   std::uint32_t torquer_fail_persistence_ticks{5};
@@ -36,7 +39,7 @@ TEST(FaultMonitors, EachConditionLatchesAfterItsPersistence) {
             }),
             5);
   EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) {
-              (void)m.residual(true, p.residual_persistence_ticks);
+              (void)m.test_residual(kOver, false, p);
               return m.update(FaultConditions{}, p);
             }),
             7);
@@ -55,10 +58,30 @@ TEST(FaultMonitors, OnlyThePersistedInputConditionIsFlagged) {
 TEST(FaultMonitors, ResettingTheResidualClearsItsFill) {
   const Persistences p;
   FaultMonitors m;
-  for (int k = 1; k < 7; ++k) EXPECT_FALSE(m.residual(true, p.residual_persistence_ticks));
+  for (int k = 1; k < 7; ++k) EXPECT_EQ(m.test_residual(kOver, false, p), 0u);
   m.reset_residual();
-  EXPECT_FALSE(m.residual(true, p.residual_persistence_ticks));
+  EXPECT_EQ(m.test_residual(kOver, false, p), 0u);
   EXPECT_FALSE(m.update(FaultConditions{}, p).fault);
+}
+
+TEST(FaultMonitors, AResidualOverItsLimitIsFlaggedOnceItPersists) {
+  const Persistences p;
+  FaultMonitors m;
+  for (int k = 1; k < 7; ++k) EXPECT_EQ(m.test_residual(kOver, false, p), 0u) << k;
+  EXPECT_EQ(m.test_residual(kOver, false, p), static_cast<std::uint32_t>(kResidualFault));
+  FaultMonitors at_limit;
+  for (int k = 1; k <= 20; ++k) {
+    EXPECT_EQ(at_limit.test_residual(Vector2<double>(-1e-3, 1e-3), false, p), 0u) << "at the limit is within it";
+  }
+}
+
+TEST(FaultMonitors, SafeModeDropsTheResidualsFill) {
+  const Persistences p;
+  FaultMonitors m;
+  for (int k = 1; k < 7; ++k) EXPECT_EQ(m.test_residual(kOver, false, p), 0u);
+  EXPECT_EQ(m.test_residual(kOver, true, p), 0u) << "not monitored in safe mode";
+  for (int k = 1; k < 7; ++k) EXPECT_EQ(m.test_residual(kOver, false, p), 0u) << "the fill starts again: " << k;
+  EXPECT_EQ(m.test_residual(kOver, false, p), static_cast<std::uint32_t>(kResidualFault));
 }
 
 TEST(FaultMonitors, AGoodWriteClearsTheTorquerCondition) {

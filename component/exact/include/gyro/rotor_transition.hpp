@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 
+#include "gyro/inline_step.hpp"
 #include "gyro/rotor_parameters.hpp"
 
 namespace gyro {
@@ -219,15 +220,6 @@ template <typename T>
 }
 
 }  // namespace detail
-
-// advance() is the tick's innermost step: inlined wherever the compiler can be told to (GCC
-// at -O2 calls it otherwise, and the call is a fifth of its cost), except where code is built
-// for size (-Os: inlined, it costs the Cortex-M targets' tick 400 to 700 bytes more stack).
-#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
-#define GYRO_INLINE_STEP [[gnu::always_inline]] inline
-#else
-#define GYRO_INLINE_STEP inline
-#endif
 
 // Advances `state` by the transition's step under constant `torque`: four 2x2 products and
 // one finiteness test (about 40 instructions on x86-64). Non-finite input, or outputs too

@@ -77,6 +77,9 @@ inline constexpr int kComponentFlagCount = 21;
   return (bit >= 0 && bit < kComponentFlagCount) ? kNames[bit] : "";
 }
 
+// Saturating counts per flag bit (gyro/flag_counters.hpp).
+using FlagCounts = std::array<std::uint32_t, kComponentFlagCount>;
+
 template <typename T>
 struct GyroComponentConfig {
   T tick_s{};                    // the fixed tick of the rate group
@@ -226,7 +229,7 @@ struct GyroTelemetry {
   std::uint64_t tick{};
   GyroMode mode{GyroMode::kIdle};
   std::uint32_t flags{};
-  std::array<std::uint32_t, kComponentFlagCount> counters{};  // saturating, per flag bit
+  FlagCounts counters{};  // saturating, per flag bit
   Vector2<T> gimbal_measured_rad{Vector2<T>::Zero()};   // last accepted pickoff reading
   Vector2<T> gimbal_predicted_rad{Vector2<T>::Zero()};  // exact-dynamics prediction
   Vector2<T> residual_rad{Vector2<T>::Zero()};          // measured - predicted

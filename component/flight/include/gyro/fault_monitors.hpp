@@ -23,11 +23,19 @@ struct FaultVerdict {
 
 class FaultMonitors {
  public:
-  // The residual's monitor is fed by the estimator's check, when there is a residual to test;
-  // true when tripped.
-  [[nodiscard]] bool residual(bool over_limit, std::uint32_t persistence) noexcept {
-    return residual_.update(over_limit, persistence);
+  // The residual test, each tick the estimator compared a reading: kResidualFault once
+  // |residual| has been over its limit for long enough. In safe mode the residual is not
+  // monitored: its fill is dropped (the estimator restarts when the gyro is caged again).
+  template <typename T, typename Config>
+  [[nodiscard]] std::uint32_t test_residual(const Vector2<T>& residual, bool safe_mode, const Config& c) noexcept {
+    if (safe_mode) {
+      residual_.reset();
+      return 0u;
+    }
+    const bool over = residual.cwiseAbs().maxCoeff() > c.residual_limit_rad;
+    return residual_.update(over, c.residual_persistence_ticks) ? static_cast<std::uint32_t>(kResidualFault) : 0u;
   }
+  // Leaving safe mode: the residual's fill from before the fault is gone.
   void reset_residual() noexcept { residual_.reset(); }
 
   // The last torquer write, fed to the next tick's monitor.

@@ -366,6 +366,10 @@ class GyroModel {
   [[nodiscard]] const Vector2<T>& applied_torque() const noexcept { return applied_torque_; }
   [[nodiscard]] T gimbal_pitch_rad() const noexcept { return refresh_angles().pitch_rad; }
   [[nodiscard]] T gimbal_yaw_rad() const noexcept { return refresh_angles().yaw_rad; }
+  [[nodiscard]] Vector2<T> gimbal_rad() const noexcept {  // (pitch, yaw)
+    const GimbalAngles<T>& g = refresh_angles();
+    return Vector2<T>(g.pitch_rad, g.yaw_rad);
+  }
   [[nodiscard]] T gimbal_cosine_of_cone() const noexcept { return refresh_angles().cosine_of_cone; }
   [[nodiscard]] T gimbal_cone_rad() const noexcept {
     return std::acos(saturate(refresh_angles().cosine_of_cone, T(1)));
@@ -398,12 +402,13 @@ class GyroModel {
   // The gimbal angles and their flag, read again after a correction (lazily: a correction
   // followed by a step never reads them twice).
   const GimbalAngles<T>& refresh_angles() const noexcept {
-    if (angles_stale_) {
-      gimbal_ = gimbal_angles(R_earth_to_body_, spin_axis_in_earth(q_gyro_to_earth_));
-      flags_ = (flags_ & ~static_cast<std::uint32_t>(kFlagGimbalLimit)) | gimbal_flag(gimbal_);
-      angles_stale_ = false;
-    }
+    if (angles_stale_) read_angles();  // the reading apart: the test alone is inlined
     return gimbal_;
+  }
+  void read_angles() const noexcept {
+    gimbal_ = gimbal_angles(R_earth_to_body_, spin_axis_in_earth(q_gyro_to_earth_));
+    flags_ = (flags_ & ~static_cast<std::uint32_t>(kFlagGimbalLimit)) | gimbal_flag(gimbal_);
+    angles_stale_ = false;
   }
 
   // kGimbal: the torquers' and bearings' torque on the rotor, on the gyro's axes. The torquer

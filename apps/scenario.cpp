@@ -47,41 +47,14 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 namespace {
 
-// Reads one JSON object: refuses unknown keys up front, then hands out typed fields.
-class Reader {
+// Reads one JSON object of a scenario (gyro/strict_json.hpp), with the scenario's own getters.
+class Reader : public StrictObject<ScenarioError> {
  public:
   Reader(const std::string& file, const json& j, std::string path, std::initializer_list<std::string_view> keys)
       : Reader(file, j, std::move(path), std::span<const std::string_view>(keys.begin(), keys.size())) {}
   Reader(const std::string& file, const json& j, std::string path, std::span<const std::string_view> keys)
-      : file_(file), j_(j), path_(std::move(path)) {
-    try {
-      check_object_keys(j, path_, keys, KeyJoin::kQuoted);
-    } catch (const JsonRefusal& r) {
-      throw ScenarioError(file_, r.field(), r.reason());
-    }
-  }
+      : StrictObject(file, j, std::move(path), keys, KeyJoin::kQuoted) {}
 
-  [[nodiscard]] const std::string& path() const noexcept { return path_; }
-  [[nodiscard]] std::string path_of(std::string_view key) const { return join_key(path_, key); }
-  [[nodiscard]] bool has(std::string_view key) const { return j_.contains(key); }
-
-  [[noreturn]] void fail(std::string_view key, const std::string& reason) const {
-    fail_at(path_of(key), reason);
-  }
-  [[noreturn]] void fail_at(const std::string& path, const std::string& reason) const {
-    throw ScenarioError(file_, path.empty() ? "(root)" : path, reason);
-  }
-
-  [[nodiscard]] const json& required(std::string_view key) const {
-    const auto it = j_.find(key);
-    if (it == j_.end()) fail(key, "missing required field");
-    return *it;
-  }
-
-  [[nodiscard]] double number(std::string_view key) const { return as_number(required(key), path_of(key)); }
-  [[nodiscard]] double number(std::string_view key, double fallback) const {
-    return has(key) ? number(key) : fallback;
-  }
   [[nodiscard]] double positive(std::string_view key) const {
     const double v = number(key);
     if (!(v > 0)) fail(key, "must be > 0, got " + format(v));
@@ -125,20 +98,6 @@ class Reader {
     return value;
   }
 
-  [[nodiscard]] bool boolean(std::string_view key) const {
-    const json& v = required(key);
-    if (!v.is_boolean()) fail(key, std::string("expected true or false, got ") + describe_json(v));
-    return v.get<bool>();
-  }
-  [[nodiscard]] bool boolean(std::string_view key, bool fallback) const { return has(key) ? boolean(key) : fallback; }
-
-  [[nodiscard]] std::string text(std::string_view key, const std::string& fallback) const {
-    if (!has(key)) return fallback;
-    const json& v = required(key);
-    if (!v.is_string()) fail(key, std::string("expected a string, got ") + describe_json(v));
-    return v.get<std::string>();
-  }
-
   template <std::size_t N>
   [[nodiscard]] std::array<double, N> numbers(std::string_view key) const {
     const json& v = required(key);
@@ -147,7 +106,7 @@ class Reader {
       fail(key, "expected an array of " + std::to_string(N) + " numbers, got " + describe_json(v));
     }
     std::array<double, N> out{};
-    for (std::size_t i = 0; i < N; ++i) out[i] = as_number(v[i], at_index(p, i));
+    for (std::size_t i = 0; i < N; ++i) out[i] = number_at(v[i], at_index(p, i));
     return out;
   }
   template <std::size_t N>
@@ -156,16 +115,10 @@ class Reader {
   }
 
   [[nodiscard]] Reader object(std::string_view key, std::initializer_list<std::string_view> keys) const {
-    return Reader(file_, required(key), path_of(key), keys);
+    return Reader(file(), required(key), path_of(key), keys);
   }
   [[nodiscard]] Reader object(std::string_view key, std::span<const std::string_view> keys) const {
-    return Reader(file_, required(key), path_of(key), keys);
-  }
-
-  [[nodiscard]] const json& array(std::string_view key) const {
-    const json& v = required(key);
-    if (!v.is_array()) fail(key, std::string("expected an array, got ") + describe_json(v));
-    return v;
+    return Reader(file(), required(key), path_of(key), keys);
   }
 
   [[nodiscard]] static std::string format(double v) {
@@ -176,17 +129,6 @@ class Reader {
     return os.str();
   }
 
- private:
-  [[nodiscard]] double as_number(const json& v, const std::string& path) const {
-    if (!v.is_number()) fail_at(path, std::string("expected a number, got ") + describe_json(v));
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail_at(path, "not a finite number");
-    return d;
-  }
-
-  const std::string& file_;
-  const json& j_;
-  std::string path_;
 };
 
 // Times are counted in ticks as integers; beyond 2^53 ticks a double no longer holds every

@@ -49,7 +49,7 @@ template <typename F>
 void for_each_column(const TickRecord& r, F&& f) {
   const auto u = [](std::uint32_t v) { return static_cast<std::uint64_t>(v); };
   f(Column{"t", Kind::kReal}, r.t_s);
-  f(Column{"mode", Kind::kMode}, to_string(r.mode));
+  f(Column{"mode", Kind::kMode}, enum_name_or(r.mode, "unknown"));
   f(Column{"gimbal_pitch", Kind::kReal}, r.gimbal_true_rad(0));
   f(Column{"gimbal_yaw", Kind::kReal}, r.gimbal_true_rad(1));
   f(Column{"gimbal_pitch_meas", Kind::kReal}, r.gimbal_measured_rad(0));
@@ -387,7 +387,7 @@ std::uint64_t max_chars(Kind k, std::uint64_t ticks) {
     case Kind::kTruthFlags: return decimal_digits(7);
     case Kind::kFaultBits: return decimal_digits((std::uint64_t{1} << kFaultKindCount) - 1u);
     case Kind::kStatus: return decimal_digits(255);
-    case Kind::kMode: return longest_name<GyroMode>([](GyroMode m) { return gyro::to_string(m); });
+    case Kind::kMode: return longest_name<GyroMode>([](GyroMode m) { return gyro::enum_name_or(m, "unknown"); });
     case Kind::kRequest: return longest_name<ModeRequest>([](ModeRequest r) { return request_name(r); });
   }
   return 0;

@@ -5,6 +5,7 @@
 // own error, with its file name.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -47,5 +48,83 @@ enum class KeyJoin : std::uint8_t { kQuoted, kAsWritten };
 // is named with the allowed one nearest to it, or with the list. Throws JsonRefusal.
 void check_object_keys(const nlohmann::json& j, const std::string& path, std::span<const std::string_view> keys,
                        KeyJoin how);
+
+}  // namespace gyro::sil
+
+namespace gyro::sil {
+
+// One JSON object of a file, read field by field: its keys are checked against the allowed
+// ones up front, then typed fields are handed out; every refusal is an Error(file, JSON path,
+// reason) of the file's format (ScenarioError, CampaignError). A format adds its own getters
+// by deriving from it.
+template <class Error>
+class StrictObject {
+ public:
+  StrictObject(const std::string& file, const nlohmann::json& j, std::string path,
+               std::span<const std::string_view> keys, KeyJoin how)
+      : file_(file), j_(j), path_(std::move(path)), how_(how) {
+    try {
+      check_object_keys(j, path_, keys, how_);
+    } catch (const JsonRefusal& r) {
+      throw Error(file_, r.field(), r.reason());
+    }
+  }
+
+  [[nodiscard]] const std::string& file() const noexcept { return file_; }
+  [[nodiscard]] const std::string& path() const noexcept { return path_; }
+  [[nodiscard]] std::string path_of(std::string_view key) const { return join_key(path_, key, how_); }
+  [[nodiscard]] bool has(std::string_view key) const { return j_.contains(key); }
+
+  [[noreturn]] void fail(std::string_view key, const std::string& reason) const { fail_at(path_of(key), reason); }
+  [[noreturn]] void fail_at(const std::string& path, const std::string& reason) const {
+    throw Error(file_, path.empty() ? "(root)" : path, reason);
+  }
+
+  [[nodiscard]] const nlohmann::json& required(std::string_view key) const {
+    const auto it = j_.find(key);
+    if (it == j_.end()) fail(key, "missing required field");
+    return *it;
+  }
+
+  [[nodiscard]] double number(std::string_view key) const { return number_at(required(key), path_of(key)); }
+  [[nodiscard]] double number(std::string_view key, double fallback) const {
+    return has(key) ? number(key) : fallback;
+  }
+  // A finite number at `path` (an element of an array, say).
+  [[nodiscard]] double number_at(const nlohmann::json& v, const std::string& path) const {
+    if (!v.is_number()) fail_at(path, "expected a number, got " + describe_json(v));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail_at(path, "not a finite number");
+    return d;
+  }
+
+  [[nodiscard]] bool boolean(std::string_view key) const {
+    const nlohmann::json& v = required(key);
+    if (!v.is_boolean()) fail(key, "expected true or false, got " + describe_json(v));
+    return v.get<bool>();
+  }
+  [[nodiscard]] bool boolean(std::string_view key, bool fallback) const { return has(key) ? boolean(key) : fallback; }
+
+  [[nodiscard]] std::string text(std::string_view key) const {
+    const nlohmann::json& v = required(key);
+    if (!v.is_string()) fail(key, "expected a string, got " + describe_json(v));
+    return v.get<std::string>();
+  }
+  [[nodiscard]] std::string text(std::string_view key, const std::string& fallback) const {
+    return has(key) ? text(key) : fallback;
+  }
+
+  [[nodiscard]] const nlohmann::json& array(std::string_view key) const {
+    const nlohmann::json& v = required(key);
+    if (!v.is_array()) fail(key, "expected an array, got " + describe_json(v));
+    return v;
+  }
+
+ private:
+  const std::string& file_;
+  const nlohmann::json& j_;
+  std::string path_;
+  KeyJoin how_;
+};
 
 }  // namespace gyro::sil

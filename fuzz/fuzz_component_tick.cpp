@@ -293,7 +293,7 @@ void print_telemetry(const gyro::GyroTelemetry<T>& t) {
                "telemetry: tick %llu mode %s flags %#x\n  measured %g %g predicted %g %g residual %g %g\n"
                "  attitude (w x y z) %g %g %g %g precession %g %g\n  rate_cmd %g %g torque %g %g "
                "nutation %g %g spin %g\n",
-               static_cast<unsigned long long>(t.tick), gyro::to_string(t.mode), t.flags, d(t.gimbal_measured_rad(0)),
+               static_cast<unsigned long long>(t.tick), gyro::enum_name(t.mode), t.flags, d(t.gimbal_measured_rad(0)),
                d(t.gimbal_measured_rad(1)), d(t.gimbal_predicted_rad(0)), d(t.gimbal_predicted_rad(1)),
                d(t.residual_rad(0)), d(t.residual_rad(1)), d(t.attitude_gyro_to_earth.w()),
                d(t.attitude_gyro_to_earth.x()), d(t.attitude_gyro_to_earth.y()), d(t.attitude_gyro_to_earth.z()),
@@ -396,7 +396,7 @@ void run(Bytes& in, std::uint8_t head) {
     const GyroMode to = c.mode();
 #if defined(GYRO_FUZZ_TRACE)
     std::fprintf(stderr, "tick %llu %s -> %s flags %#x torque %g %g\n", static_cast<unsigned long long>(script.tick),
-                 gyro::to_string(from), gyro::to_string(to), after.flags, static_cast<double>(port.torque(0)),
+                 gyro::enum_name(from), gyro::enum_name(to), after.flags, static_cast<double>(port.torque(0)),
                  static_cast<double>(port.torque(1)));
 #endif
     const ModeRequest request = known_request(g.request) ? g.request : ModeRequest::kNone;

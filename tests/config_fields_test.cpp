@@ -404,8 +404,21 @@ TEST(ConfigFields, GivenEachEnumerationWHENANameIsLookedUpTHENItsOwnEnumeratorCo
   expect_names_round_trip(TorquerAxes::kGimbal);
   expect_names_round_trip(ModeRequest::kUncage);
   expect_names_round_trip(SpinDrive::kFree);
-  expect_names_round_trip(TorqueAxes::kGyro);
+  expect_names_round_trip(GyroMode::kFault);
+  expect_names_round_trip(PortStatus::kHardwareFault);
+  expect_names_round_trip(PlantKind::kGimbal);
+  expect_names_round_trip(FaultKind::kSpinMotorFailure);
   static_assert(enum_name(Status::kWrongMode)[0] == 'w', "usable in constant expressions");
+}
+
+TEST(EnumNames, AValueOutsideTheEnumerationIsNamedAsUnknown) {
+  // A corrupted value (e.g. from telemetry) is named, never read out of bounds.
+  EXPECT_STREQ(enum_name_or(static_cast<GyroMode>(99), "unknown"), "unknown");
+  EXPECT_STREQ(enum_name_or(GyroMode::kUncaging, "unknown"), "uncaging");
+  EXPECT_STREQ(enum_name_or(static_cast<PortStatus>(77), "?"), "?");
+  EXPECT_STREQ(fault_kind_name(FaultKind::kNone), "");
+  EXPECT_STREQ(fault_kind_name(static_cast<FaultKind>(kFaultKindCount)), "");
+  EXPECT_STREQ(fault_kind_name(FaultKind::kBiasJump), "bias_jump");
 }
 
 }  // namespace

@@ -51,20 +51,6 @@ TEST(StatusText, GivenEveryStatusWhenNamedThenEachTextIsDistinctAndAnUnknownValu
   EXPECT_STREQ(to_string(static_cast<Status>(200)), "unknown status");
 }
 
-TEST(StatusText, GivenEveryModeWhenNamedThenEachTextIsDistinctAndAnUnknownValueSaysSo) {
-  expect_distinct_texts<GyroMode>(static_cast<int>(GyroMode::kFault) + 1, "GyroMode");
-  EXPECT_STREQ(to_string(GyroMode::kIdle), "idle");
-  EXPECT_STREQ(to_string(GyroMode::kFault), "fault");
-  EXPECT_STREQ(to_string(static_cast<GyroMode>(99)), "unknown");
-}
-
-TEST(StatusText, GivenEveryPortStatusWhenNamedThenEachTextIsDistinctAndAnUnknownValueSaysSo) {
-  expect_distinct_texts<PortStatus>(static_cast<int>(PortStatus::kHardwareFault) + 1, "PortStatus");
-  EXPECT_STREQ(to_string(PortStatus::kOk), "ok");
-  EXPECT_STREQ(to_string(PortStatus::kBusError), "bus error");
-  EXPECT_STREQ(to_string(static_cast<PortStatus>(77)), "unknown port status");
-}
-
 TEST(ComponentConfig, GivenAcceptedConfigWhenARefusedOneFollowsThenConfigStillReturnsTheAcceptedOne) {
   Sil<double> sil;
   GyroComponentConfig<double> c = SeekerGyro<double>::component();

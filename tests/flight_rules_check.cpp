@@ -8,6 +8,7 @@
 #include "gyro/component_types.hpp"
 #include "gyro/config_check.hpp"
 #include "gyro/config_fields.hpp"
+#include "gyro/enum_names.hpp"
 #include "gyro/error_sources.hpp"
 #include "gyro/estimator.hpp"
 #include "gyro/fault_monitors.hpp"
@@ -32,6 +33,7 @@
 #include "gyro/stop_protection.hpp"
 #include "gyro/tick_tracker.hpp"
 #include "gyro/torque_law.hpp"
+#include "gyro/torquer_axes.hpp"
 #include "gyro/torque_shaper.hpp"
 
 namespace gyro {

@@ -96,7 +96,7 @@ TEST(GimbalPlantConfig, GivenEachBadFieldThenRefusedNamingIt) {
       {"stop_restitution", Status::kOutOfRange, [](Config& c) { c.stop_restitution = 1.5; }},
       {"stop_restitution", Status::kOutOfRange, [](Config& c) { c.stop_restitution = -0.1; }},
       {"spin_drive", Status::kOutOfRange, [](Config& c) { c.spin_drive = static_cast<SpinDrive>(7); }},
-      {"torque_axes", Status::kOutOfRange, [](Config& c) { c.torque_axes = static_cast<TorqueAxes>(7); }},
+      {"torquer_axes", Status::kOutOfRange, [](Config& c) { c.torquer_axes = static_cast<TorquerAxes>(7); }},
       {"max_body_rate_rad_s", Status::kOutOfRange, [](Config& c) { c.max_body_rate_rad_s = 0.0; }},
       {"max_torque", Status::kOutOfRange, [](Config& c) { c.max_torque = -1.0; }},
       {"max_specific_force", Status::kNonFiniteInput, [](Config& c) { c.max_specific_force = kInf; }},

@@ -1,5 +1,5 @@
 // The gimbal plant in the limit where the device becomes the report's gyro: no gimbal
-// inertia, torques and friction about the gyro's own non-rolling axes (TorqueAxes::kGyro) on
+// inertia, torques and friction about the gyro's own non-rolling axes (TorquerAxes::kGyro) on
 // its inertial rates, a free rotor. There the plant and GyroModel (the report's exact linear
 // step, component/report/include/gyro/gyro_model.hpp) solve the same motion, the model with the
 // torque held in each step's frame and the step's rotation composed per step: their gimbal
@@ -35,7 +35,7 @@ GimbalPlantConfig<double> report_limit_plant() {
   c.spin_drive = SpinDrive::kFree;
   c.spin_down_time_s = 0.0;
   c.spin_servo_bandwidth_rad_s = 0.0;
-  c.torque_axes = TorqueAxes::kGyro;
+  c.torquer_axes = TorquerAxes::kGyro;
   c.stop_cone_rad = 1.2;
   c.max_substep_phase_rad = 0.25;  // its own error far below the model's (docs/gimbal-plant.md)
   return c;

@@ -49,7 +49,7 @@ Case random_case(std::mt19937_64& rng, int k) {
   c.prm.servo_bandwidth = 20.0 * (1.0 + u(rng));
   c.prm.spin_drag = j0 * (1.0 + u(rng));
   c.prm.mass_unbalance = 10.0 * scale * u(rng);
-  c.prm.torque_axes = ((k / 6) % 2 == 0) ? gyro::TorqueAxes::kGimbal : gyro::TorqueAxes::kGyro;
+  c.prm.torquer_axes = ((k / 6) % 2 == 0) ? gyro::TorquerAxes::kGimbal : gyro::TorquerAxes::kGyro;
   c.s.pitch_rad = 1.2 * u(rng);
   c.s.yaw_rad = 1.2 * u(rng);
   c.s.pitch_rate_rad_s = 8.0 * u(rng);
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
                          c.prm.coulomb(0), c.prm.coulomb(1), c.coulomb_scale,
                          c.prm.spin_drive == gyro::SpinDrive::kMotor ? 1.0 : 0.0, c.prm.motor_torque_limit,
                          c.prm.servo_bandwidth, c.prm.spin_drag, c.prm.mass_unbalance,
-                         c.prm.torque_axes == gyro::TorqueAxes::kGyro ? 1.0 : 0.0, c.s.pitch_rad, c.s.yaw_rad,
+                         c.prm.torquer_axes == gyro::TorquerAxes::kGyro ? 1.0 : 0.0, c.s.pitch_rad, c.s.yaw_rad,
                          c.s.pitch_rate_rad_s, c.s.yaw_rate_rad_s, c.s.spin_rate_rad_s, c.s.twist_rad,
                          c.drive.torque(0), c.drive.torque(1), c.drive.spin_command_rad_s, c.body.rate_rad_s(0),
                          c.body.rate_rad_s(1), c.body.rate_rad_s(2), c.body.rate_dot_rad_s2(0),

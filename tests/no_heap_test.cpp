@@ -209,12 +209,12 @@ TYPED_TEST(NoHeap, GivenBadInputWhenRejectedThenNoHeap) {
 
 TYPED_TEST(NoHeap, GivenTheGimbalPlantWithEverythingOnWhenConfiguredStartedAndSteppedThenNoHeap) {
   using T = TypeParam;
-  for (const TorqueAxes axes : {TorqueAxes::kGimbal, TorqueAxes::kGyro}) {
+  for (const TorquerAxes axes : {TorquerAxes::kGimbal, TorquerAxes::kGyro}) {
     GimbalPlantConfig<T> c = seeker_gimbal_config<T>();
     c.inner_coulomb_torque = T(2e-4);
     c.outer_coulomb_torque = T(2e-4);
     c.mass_unbalance = T(1e-4);
-    c.torque_axes = axes;
+    c.torquer_axes = axes;
     GimbalStart<T> s;
     s.gimbal_angle_rad = Vector2<T>(T(0.3), T(0.2));
     s.gimbal_rate_rad_s = Vector2<T>(T(5), T(-5));

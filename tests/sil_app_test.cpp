@@ -155,7 +155,7 @@ TEST(SilScenarios, GivenTheShippedScenariosThenEachEndsAsItsDescriptionSays) {
     SCOPED_TRACE(e.file);
     const Scenario s = load_scenario(kScenarios / e.file);
     const RunOutput r = run_to_string(s);
-    EXPECT_EQ(r.summary.final_mode, e.final_mode) << to_string(r.summary.final_mode);
+    EXPECT_EQ(r.summary.final_mode, e.final_mode) << enum_name(r.summary.final_mode);
     EXPECT_EQ(r.summary.flags_seen & e.must_see, e.must_see) << flag_names(r.summary.flags_seen);
     EXPECT_EQ(r.summary.flags_seen & e.must_not_see, 0u) << flag_names(r.summary.flags_seen);
   }

@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
         worst_ortho_truth = std::max(worst_ortho_truth, gyro::orthonormality_error(m->R_earth_to_gyro()));
       }
       std::fprintf(stderr, "tick %" PRIu64 " (t = %.0f s): mode %s, residual max %.3e rad, RSS %ld KiB\n", k,
-                   static_cast<double>(k) * s.run.tick_s, gyro::to_string(comp.mode()), worst_residual,
+                   static_cast<double>(k) * s.run.tick_s, gyro::enum_name(comp.mode()), worst_residual,
                    resident_kib());
     }
   }

@@ -188,7 +188,7 @@ int run_one(const std::vector<Gyro>& gyros, const std::vector<std::string>& a) {
               static_cast<unsigned long long>(r.r.contact_ticks), r.r.first_contact_s, r.r.first_beyond_cp_s);
   std::printf("first: stop_protect %.4f, beyond_authority %.4f, gimbal_limit %.4f, safe mode %.4f s; final mode %s\n",
               r.r.first_protect_s, r.r.first_beyond_s, r.r.first_limit_s, r.r.first_fault_s,
-              gyro::to_string(r.r.final_mode));
+              gyro::enum_name(r.r.final_mode));
   std::printf("stop_protect switchings %llu, beyond_authority %llu ticks, furthest out %.4f rad, torquer saturated "
               "%llu ticks, worst residual %.2e rad%s\n",
               static_cast<unsigned long long>(r.r.protect_toggles), static_cast<unsigned long long>(r.r.beyond_ticks),
@@ -472,7 +472,7 @@ int main(int argc, char** argv) {
                    direction_key(r.k.direction), r.k.roll_rad_s, r.k.cone_deg, r.r.start_cone_rad, r.a.demand,
                    r.within() ? 1 : 0, r.r.contact_ticks > 0 ? 1 : 0, static_cast<unsigned long long>(r.r.contact_ticks),
                    r.r.first_contact_s, r.r.max_cone_rad, r.r.closest_rad, r.r.first_beyond_cp_s, r.r.first_protect_s,
-                   r.r.first_beyond_s, r.r.first_limit_s, r.r.first_fault_s, gyro::to_string(r.r.final_mode),
+                   r.r.first_beyond_s, r.r.first_limit_s, r.r.first_fault_s, gyro::enum_name(r.r.final_mode),
                    r.r.reached_mode ? 1 : 0, r.demand_turn_plus_u, static_cast<unsigned long long>(r.r.protect_toggles),
                    static_cast<unsigned long long>(r.r.saturated_ticks), r.r.worst_residual_rad, r.r.residual_fault ? 1 : 0,
                    static_cast<unsigned long long>(r.r.beyond_ticks), r.r.furthest_out_rad, flag_names(r.r.flags_seen, " ").c_str());

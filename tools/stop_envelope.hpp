@@ -142,7 +142,7 @@ inline Gyro report_gyro(const std::string& scenario_path) {
   p.mass_unbalance = 0.0;
   p.stop_cone_rad = s.gyro.gimbal_stop_rad;
   p.stop_restitution = 0.2;
-  p.torque_axes = TorqueAxes::kGimbal;
+  p.torquer_axes = TorquerAxes::kGimbal;
   p.max_body_rate_rad_s = 100.0;
   p.max_torque = 1e4;  // 20x the component's torque limit
   p.max_specific_force = 1e4;

@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <limits>
 #include <map>
+#include <vector>
 
 #include "bounded_read.hpp"
 #include "campaign_error.hpp"
@@ -36,44 +37,15 @@ std::string number_text(double v) {
 using sil::at_index;
 using sil::describe_json;
 
-// One object of the campaign file: unknown keys refused up front, then typed fields.
-class Fields {
+// Reads one JSON object of a campaign file (strict_json.hpp), with the campaign's own getters.
+class Fields : public sil::StrictObject<CampaignError> {
  public:
   Fields(const std::string& file, const json& j, std::string path, std::initializer_list<const char*> keys)
-      : file_(file), j_(j), path_(std::move(path)) {
-    const std::vector<std::string_view> allowed(keys.begin(), keys.end());
-    try {
-      sil::check_object_keys(j, path_, allowed, sil::KeyJoin::kAsWritten);
-    } catch (const sil::JsonRefusal& r) {
-      throw CampaignError(file_, r.field(), r.reason());
-    }
-  }
+      : StrictObject(file, j, std::move(path), allowed(keys), sil::KeyJoin::kAsWritten) {}
 
-  [[nodiscard]] std::string path_of(std::string_view key) const {
-    return sil::join_key(path_, key, sil::KeyJoin::kAsWritten);
-  }
-  [[nodiscard]] bool has(std::string_view key) const { return j_.contains(key); }
-  [[nodiscard]] const json& get(std::string_view key) const {
-    const auto it = j_.find(key);
-    if (it == j_.end()) fail(key, "missing required field");
-    return *it;
-  }
-
-  [[noreturn]] void fail(std::string_view key, const std::string& reason) const { fail_at(path_of(key), reason); }
-  [[noreturn]] void fail_at(const std::string& path, const std::string& reason) const {
-    throw CampaignError(file_, path.empty() ? "(root)" : path, reason);
-  }
-
-  [[nodiscard]] double number(std::string_view key) const { return number_at(get(key), path_of(key)); }
-  [[nodiscard]] double number_at(const json& v, const std::string& path) const {
-    if (!v.is_number()) fail_at(path, "expected a number, got " + describe_json(v));
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail_at(path, "not a finite number");
-    return d;
-  }
   // An integer in [lo, hi]: refused with the range when outside, or when not an integer.
   [[nodiscard]] std::uint64_t count(std::string_view key, std::uint64_t lo, std::uint64_t hi) const {
-    const json& v = get(key);
+    const json& v = required(key);
     if (v.is_number_unsigned()) {
       const std::uint64_t u = v.get<std::uint64_t>();
       if (u >= lo && u <= hi) return u;
@@ -89,22 +61,9 @@ class Fields {
     if (!v.is_number_integer()) fail_at(path, "expected an integer, got " + describe_json(v));
     return v.get<std::int64_t>();
   }
-  [[nodiscard]] std::string text(std::string_view key) const {
-    const json& v = get(key);
-    if (!v.is_string()) fail(key, "expected a string, got " + describe_json(v));
-    return v.get<std::string>();
-  }
-  [[nodiscard]] std::string text(std::string_view key, const std::string& fallback) const {
-    return has(key) ? text(key) : fallback;
-  }
-  [[nodiscard]] const json& array(std::string_view key) const {
-    const json& v = get(key);
-    if (!v.is_array()) fail(key, "expected an array, got " + describe_json(v));
-    return v;
-  }
   // A number, or an interval [lo, hi] with lo <= hi.
   [[nodiscard]] Interval interval(std::string_view key) const {
-    const json& v = get(key);
+    const json& v = required(key);
     const std::string p = path_of(key);
     if (v.is_array()) {
       if (v.size() != 2) fail(key, "expected a number or an interval [lo, hi], got an array of " +
@@ -118,13 +77,11 @@ class Fields {
     const double d = number_at(v, p);
     return Interval{d, d};
   }
-  [[nodiscard]] const std::string& path() const { return path_; }
-  [[nodiscard]] const std::string& file() const { return file_; }
-
  private:
-  const std::string& file_;
-  const json& j_;
-  std::string path_;
+  // The allowed keys as views (they outlive the check: string literals).
+  [[nodiscard]] static std::vector<std::string_view> allowed(std::initializer_list<const char*> keys) {
+    return std::vector<std::string_view>(keys.begin(), keys.end());
+  }
 };
 
 // The standard normal's CDF.
@@ -150,7 +107,7 @@ bool overlaps(const std::vector<PathStep>& a, const std::vector<PathStep>& b) {
 
 void apply_set(const Fields& top, json& base) {
   if (!top.has("set")) return;
-  const json& set = top.get("set");
+  const json& set = top.required("set");
   if (!set.is_object()) top.fail("set", "expected an object of \"json.path\": value, got " + describe_json(set));
   std::vector<std::vector<PathStep>> done;
   for (const auto& item : set.items()) {
@@ -242,8 +199,8 @@ void parse_parameters(const Fields& d, Dispersion& out) {
       break;
     }
     case Distribution::kUniformInteger:
-      out.int_min = d.integer_at(d.get("min"), d.path_of("min"));
-      out.int_max = d.integer_at(d.get("max"), d.path_of("max"));
+      out.int_min = d.integer_at(d.required("min"), d.path_of("min"));
+      out.int_max = d.integer_at(d.required("max"), d.path_of("max"));
       if (out.int_min > out.int_max) {
         d.fail("max", "must be >= min (" + std::to_string(out.int_min) + "), got " + std::to_string(out.int_max));
       }
@@ -401,7 +358,7 @@ FaultOption parse_fault_option(const Fields& f, double duration_s) {
     if (o.duration_s.lo < 0) f.fail("duration_s", "must be >= 0 (0 = permanent), got " + number_text(o.duration_s.lo));
   }
   if (f.has("axis")) {
-    const json& a = f.get("axis");
+    const json& a = f.required("axis");
     const std::string p = f.path_of("axis");
     o.axes.clear();
     const auto one = [&](const json& v, const std::string& path) {
@@ -477,7 +434,7 @@ FaultInjection parse_fault_injection(const Fields& fi, double duration_s, std::s
 
 std::optional<Window> parse_window(const Fields& m, std::string_view key, double duration_s) {
   if (!m.has(key)) return std::nullopt;
-  const json& v = m.get(key);
+  const json& v = m.required(key);
   if (v.is_boolean()) return v.get<bool>() ? std::optional<Window>(Window{0, duration_s}) : std::nullopt;
   const Fields w(m.file(), v, m.path_of(key), {"from_s", "to_s"});
   Window out{0, duration_s};
@@ -491,7 +448,7 @@ std::optional<Window> parse_window(const Fields& m, std::string_view key, double
 
 bool flag(const Fields& m, std::string_view key) {
   if (!m.has(key)) return false;
-  const json& v = m.get(key);
+  const json& v = m.required(key);
   if (!v.is_boolean()) m.fail(key, "expected true or false, got " + describe_json(v));
   return v.get<bool>();
 }
@@ -507,7 +464,7 @@ MetricSet parse_metrics(const Fields& m, double duration_s) {
   out.final_mode = flag(m, "final_mode");
   out.gimbal_stop = flag(m, "gimbal_stop");
   if (m.has("flag_counters")) {
-    const json& v = m.get("flag_counters");
+    const json& v = m.required("flag_counters");
     const std::vector<std::string>& names = component_flag_names();
     if (v.is_boolean()) {
       if (v.get<bool>()) {
@@ -574,7 +531,7 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
   std::string value_text;
   if (c.has("equals")) {
     out.op = Criterion::Op::kEquals;
-    const json& v = c.get("equals");
+    const json& v = c.required("equals");
     switch (col->type) {
       case ColumnType::kNumber: out.number = c.number("equals"); value_text = number_text(out.number); break;
       case ColumnType::kBoolean:
@@ -585,11 +542,12 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
       case ColumnType::kMode: {
         if (!v.is_string()) c.fail("equals", out.metric + " is a mode name, got " + describe_json(v));
         out.text = v.get<std::string>();
-        bool known = false;
-        for (GyroMode m : {GyroMode::kIdle, GyroMode::kCaged, GyroMode::kUncaging, GyroMode::kFree, GyroMode::kFault}) {
-          known = known || out.text == gyro::to_string(m);
+        GyroMode mode{};
+        if (!gyro::enum_from_name(out.text, mode)) {
+          std::string names;
+          for (const char* n : gyro::enum_names(GyroMode{})) names += (names.empty() ? "" : ", ") + std::string(n);
+          c.fail("equals", "unknown mode \"" + out.text + "\" (one of: " + names + ")");
         }
-        if (!known) c.fail("equals", "unknown mode \"" + out.text + "\" (one of: idle, caged, uncaging, free, fault)");
         value_text = out.text;
         break;
       }
@@ -602,7 +560,7 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
     value_text = number_text(out.number);
   }
   if (c.has("runs")) {
-    const json& r = c.get("runs");
+    const json& r = c.required("runs");
     if (r.is_string()) {
       const std::string s = r.get<std::string>();
       if (s == "all") {
@@ -746,7 +704,7 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   c.runs = top.count("runs", 1, kMaxRuns);
 
   // The base scenario: inline, or a file relative to the campaign's directory.
-  const json& base = top.get("base");
+  const json& base = top.required("base");
   if (base.is_string()) {
     c.base_source = base.get<std::string>();
     c.base_path = base_dir / c.base_source;
@@ -777,11 +735,11 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   c.seed = top.count("seed", 0, std::numeric_limits<std::uint64_t>::max());
   c.dispersions = parse_dispersions(top, c.base);
   if (top.has("fault_injection")) {
-    const Fields fi(c.file, top.get("fault_injection"), "fault_injection", {"select", "faults"});
+    const Fields fi(c.file, top.required("fault_injection"), "fault_injection", {"select", "faults"});
     c.faults = parse_fault_injection(fi, duration_s, s.fault_count);
   }
   if (top.has("metrics")) {
-    const Fields m(c.file, top.get("metrics"), "metrics",
+    const Fields m(c.file, top.required("metrics"), "metrics",
                    {"healthy_residual", "residual_persistence", "envelope", "safe_mode", "slew_rate_error",
                     "pointing_error", "final_mode", "flag_counters", "gimbal_stop"});
     c.metrics = parse_metrics(m, duration_s);
@@ -795,7 +753,7 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
     }
   }
 
-  if (top.has("plots")) c.scatter = parse_plots(Fields(c.file, top.get("plots"), "plots", {"scatter"}), c);
+  if (top.has("plots")) c.scatter = parse_plots(Fields(c.file, top.required("plots"), "plots", {"scatter"}), c);
 
   c.resolved_text = resolved.dump(2) + "\n";
   if (c.resolved_text.size() > kMaxCampaignBytes) {

@@ -163,7 +163,7 @@ bool measure_case(gyro_bench::TickCase which, const char* name) noexcept {
       return false;
     }
     gyro_fw::Line() << "tick " << static_cast<unsigned long>(i + 1) << ' ' << static_cast<long>(end - begin - empty)
-                    << ' ' << gyro::to_string(static_cast<gyro::GyroMode>(g_mode[i])) << ' '
+                    << ' ' << gyro::enum_name_or(static_cast<gyro::GyroMode>(g_mode[i]), "unknown") << ' '
                     << static_cast<unsigned long>(g_flags[i]) << '\n';
   }
   return true;

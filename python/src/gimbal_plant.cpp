@@ -79,7 +79,7 @@ void bind_plant(py::module_& m, const char* name, const char* doc) {
            py::arg("tick_s"), py::arg("config") = py::none(),
            "Configures for ticks of tick_s from a dict and/or keyword arguments (the fields of\n"
            "GimbalPlantConfig: spin_inertia, rotor_transverse_inertia, inner_gimbal_inertia (3 numbers),\n"
-           "..., spin_drive='motor'|'free', torque_axes='gimbal'|'gyro', the envelope max_*). A refusal\n"
+           "..., spin_drive='motor'|'free', torquer_axes='gimbal'|'gyro', the envelope max_*). A refusal\n"
            "raises gyro.ConfigError naming the field (tick_s included).")
       .def(
           "configure",

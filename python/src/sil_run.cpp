@@ -100,7 +100,7 @@ py::dict telemetry(const sil::RunSummary& s) {
   t["precision"] = sil::to_string(s.precision);
   t["ticks"] = s.ticks;
   t["rows"] = s.rows;
-  t["final_mode"] = to_string(s.final_mode);
+  t["final_mode"] = enum_name(s.final_mode);
   t["flags_seen"] = s.flags_seen;
   py::list seen;
   py::dict counters;

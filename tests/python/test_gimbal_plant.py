@@ -12,7 +12,7 @@ import gyro
 SEEKER = dict(spin_inertia=3e-5, rotor_transverse_inertia=1.6e-5, inner_gimbal_inertia=[2e-6, 4e-6, 2e-6],
               outer_gimbal_inertia=[4e-6, 2e-6, 2e-6], inner_friction=4e-4, outer_friction=4e-4, spin_drive="motor",
               max_spin_hz=400.0, motor_torque_limit=0.01, spin_servo_bandwidth_rad_s=5.0, spin_down_time_s=60.0,
-              stop_cone_rad=0.55, stop_restitution=0.2, torque_axes="gimbal", max_body_rate_rad_s=40.0, max_torque=1.0,
+              stop_cone_rad=0.55, stop_restitution=0.2, torquer_axes="gimbal", max_body_rate_rad_s=40.0, max_torque=1.0,
               max_specific_force=1e4)
 
 

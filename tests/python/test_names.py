@@ -31,7 +31,7 @@ def test_given_every_status_then_each_has_its_own_description():
 @pytest.mark.parametrize("cls, field, names", [
     (gyro.GyroModel, "torquer_axes", ["gyro", "gimbal"]),
     (gyro.GimbalPlant, "spin_drive", ["motor", "free"]),
-    (gyro.GimbalPlant, "torque_axes", ["gimbal", "gyro"]),
+    (gyro.GimbalPlant, "torquer_axes", ["gyro", "gimbal"]),
 ])
 def test_given_an_enumerated_field_then_its_names_are_the_tables(cls, field, names):
     assert field in cls.config_fields

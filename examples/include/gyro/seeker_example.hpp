@@ -61,7 +61,7 @@ struct SeekerExample : SeekerComponentExample<T> {
     c.spin_down_time_s = T(60);             // free-running, the rotor runs down in a minute
     c.stop_cone_rad = T(0.55);              // as the SIL stub's stop (SeekerExample::stub())
     c.stop_restitution = T(0.2);
-    c.torque_axes = TorqueAxes::kGimbal;
+    c.torquer_axes = TorquerAxes::kGimbal;
     c.max_body_rate_rad_s = T(40);          // roll up to 6 Hz
     c.max_torque = T(1);                    // 10x the component's torque limit
     c.max_specific_force = T(1e4);          // 1000 g

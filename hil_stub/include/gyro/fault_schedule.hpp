@@ -38,23 +38,17 @@ enum class FaultKind : std::uint8_t {
   kSaturatedTorquer,
   kSpinMotorFailure,
 };
-inline constexpr int kFaultKindCount = 8;
-
 // The fault kinds' names in scenario files and logs, in enum order.
-inline constexpr const char* kFaultKindNames[kFaultKindCount] = {
-    "none",         "stuck_pickoff",     "invalid_reading",    "dropout",
-    "bias_jump",    "dead_torquer",      "saturated_torquer",  "spin_motor_failure"};
-
-[[nodiscard]] constexpr const char* to_string(FaultKind k) noexcept {
-  const auto i = static_cast<std::size_t>(k);
-  if (i < std::size(kFaultKindNames)) return kFaultKindNames[i];
-  return "unknown fault";
+[[nodiscard]] constexpr std::array<const char*, 8> enum_names(FaultKind /*tag*/) noexcept {
+  return {"none",      "stuck_pickoff",     "invalid_reading",   "dropout",
+          "bias_jump", "dead_torquer",      "saturated_torquer", "spin_motor_failure"};
 }
+inline constexpr int kFaultKindCount = static_cast<int>(enum_names(FaultKind{}).size());
 
 // The fault kind's name in scenario files and logs ("stuck_pickoff"); "" for kNone or an
 // unknown value.
 [[nodiscard]] constexpr const char* fault_kind_name(FaultKind k) noexcept {
-  return k == FaultKind::kNone ? "" : (static_cast<std::size_t>(k) < std::size(kFaultKindNames) ? to_string(k) : "");
+  return k == FaultKind::kNone ? "" : enum_name_or(k, "");
 }
 
 // Whether a fault of this kind acts through its `magnitude` (a file giving the kind must give

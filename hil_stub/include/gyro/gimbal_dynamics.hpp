@@ -35,7 +35,7 @@ struct GimbalParameters {
   T servo_bandwidth{};
   T spin_drag{};                            // J0 / spin_down_time_s, or 0
   T mass_unbalance{};
-  TorqueAxes torque_axes{TorqueAxes::kGimbal};
+  TorquerAxes torquer_axes{TorquerAxes::kGimbal};
 };
 
 template <typename T>
@@ -52,7 +52,7 @@ template <typename T>
   p.servo_bandwidth = c.spin_servo_bandwidth_rad_s;
   p.spin_drag = c.spin_down_time_s > T(0) ? c.spin_inertia / c.spin_down_time_s : T(0);
   p.mass_unbalance = c.mass_unbalance;
-  p.torque_axes = c.torque_axes;
+  p.torquer_axes = c.torquer_axes;
   return p;
 }
 
@@ -136,7 +136,7 @@ template <typename T>
 
   // Generalised forces on (theta, psi).
   Vector2<T> q_torquer, q_friction;
-  if (prm.torque_axes == TorqueAxes::kGimbal) {
+  if (prm.torquer_axes == TorquerAxes::kGimbal) {
     q_torquer = drive.torque;
     q_friction = Vector2<T>(bearing_friction(th_d, prm.friction(0), prm.coulomb(0), prm.inv_coulomb_scale),
                             bearing_friction(ps_d, prm.friction(1), prm.coulomb(1), prm.inv_coulomb_scale));

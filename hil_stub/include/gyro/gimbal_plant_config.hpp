@@ -15,6 +15,7 @@
 #include "gyro/config_check.hpp"
 #include "gyro/config_fields.hpp"
 #include "gyro/rotor_parameters.hpp"  // all_finite, kPi, Vector2
+#include "gyro/torquer_axes.hpp"
 
 namespace gyro {
 
@@ -25,15 +26,6 @@ enum class SpinDrive : std::uint8_t {
 };
 // The names of SpinDrive's values in configuration files, in enum order.
 [[nodiscard]] constexpr std::array<const char*, 2> enum_names(SpinDrive /*tag*/) noexcept { return {"motor", "free"}; }
-
-// About which axes the torquers push and the gimbal friction acts.
-enum class TorqueAxes : std::uint8_t {
-  kGimbal = 0,  // the device: T1 about the inner gimbal axis, T2 about the outer axis (body z),
-                // friction on each gimbal's rate relative to its carrier
-  kGyro,        // the report's idealisation: T1, T2 about the gyro's own non-rolling pitch and
-                // yaw axes, friction on the gyro's inertial rates about them
-};
-[[nodiscard]] constexpr std::array<const char*, 2> enum_names(TorqueAxes /*tag*/) noexcept { return {"gimbal", "gyro"}; }
 
 template <typename T>
 struct GimbalPlantConfig {
@@ -69,7 +61,7 @@ struct GimbalPlantConfig {
   T stop_cone_rad{};      // kMinGimbalStopCone <= stop <= kMaxGimbalStopCone (gimbal lock out of reach)
   T stop_restitution{};   // in [0, 1]: 0 a dead stop, 1 an elastic bounce
 
-  TorqueAxes torque_axes{TorqueAxes::kGimbal};
+  TorquerAxes torquer_axes{TorquerAxes::kGimbal};
 
   // Envelope of step inputs; beyond it a step is refused (kOutOfRange).
   T max_body_rate_rad_s{};   // |(p, q, r)|; also enters the sub-step rule
@@ -133,9 +125,9 @@ struct FieldTable<GimbalPlantConfig<T>> {
       c.mass_unbalance...);
     v(Field{"stop_cone_rad", kPos, kRange, kImplied, nullptr, 1e-3, 1.3962634015954636, "rad", "1 mrad to 80 deg: gimbal lock out of reach"}, c.stop_cone_rad...);
     v(Field{"stop_restitution", kNonNeg, kRange, kOpt, nullptr, 0.0, 1.0, "", "0 a dead stop to 1 an elastic bounce"}, c.stop_restitution...);
-    v(Field{"torque_axes", Rule::kNone, kRange, kOpt, nullptr, -kNoBound, kNoBound, "",
+    v(Field{"torquer_axes", Rule::kNone, kRange, kOpt, nullptr, -kNoBound, kNoBound, "",
             "about the gimbal axes (the device) or the gyro's own (the report's idealisation)"},
-      c.torque_axes...);
+      c.torquer_axes...);
     v(Field{"max_body_rate_rad_s", kPos, kRange, kOpt, nullptr, 1e-4, 1e4, "rad/s",
             "the component's envelope of body rates, 0.006 deg/s to 1e4 rad/s"},
       c.max_body_rate_rad_s...);
@@ -193,8 +185,8 @@ template <typename T>
   if (c.spin_drive != SpinDrive::kMotor && c.spin_drive != SpinDrive::kFree) {
     return {Status::kOutOfRange, "spin_drive"};
   }
-  if (c.torque_axes != TorqueAxes::kGimbal && c.torque_axes != TorqueAxes::kGyro) {
-    return {Status::kOutOfRange, "torque_axes"};
+  if (c.torquer_axes != TorquerAxes::kGimbal && c.torquer_axes != TorquerAxes::kGyro) {
+    return {Status::kOutOfRange, "torquer_axes"};
   }
   if (c.spin_drive == SpinDrive::kMotor) {
     if (!std::isfinite(c.motor_torque_limit)) return {Status::kNonFiniteInput, "motor_torque_limit"};

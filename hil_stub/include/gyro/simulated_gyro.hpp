@@ -46,13 +46,8 @@ enum class PlantKind : std::uint8_t {
   kGimbal,      // the device: a rotor on two gimbals, integrated from its nonlinear equations
 };
 
-[[nodiscard]] constexpr const char* to_string(PlantKind k) noexcept {
-  switch (k) {
-    case PlantKind::kReport: return "report";
-    case PlantKind::kGimbal: return "gimbal";
-  }
-  return "unknown plant";
-}
+// The names of the plants in scenario files and logs, in enum order.
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(PlantKind /*tag*/) noexcept { return {"report", "gimbal"}; }
 
 template <typename T>
 struct SimulatedGyroConfig {

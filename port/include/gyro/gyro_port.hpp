@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 
 namespace gyro {
@@ -20,15 +21,9 @@ enum class PortStatus : std::uint8_t {
   kHardwareFault,  // the electronics report a fault of their own
 };
 
-[[nodiscard]] constexpr const char* to_string(PortStatus s) noexcept {
-  switch (s) {
-    case PortStatus::kOk: return "ok";
-    case PortStatus::kNotReady: return "not ready";
-    case PortStatus::kTimeout: return "timeout";
-    case PortStatus::kBusError: return "bus error";
-    case PortStatus::kHardwareFault: return "hardware fault";
-  }
-  return "unknown port status";
+// The names of the port statuses in logs and messages, in enum order.
+[[nodiscard]] constexpr std::array<const char*, 5> enum_names(PortStatus /*tag*/) noexcept {
+  return {"ok", "not_ready", "timeout", "bus_error", "hardware_fault"};
 }
 
 // One conversion of the pickoffs. Angles follow docs/conventions (and gyro/attitude.hpp):

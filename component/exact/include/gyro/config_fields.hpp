@@ -22,6 +22,7 @@
 #include <type_traits>
 
 #include "gyro/config_check.hpp"
+#include "gyro/enum_names.hpp"
 #include "gyro/status.hpp"
 
 namespace gyro {
@@ -67,34 +68,6 @@ struct FieldTable {
 
 template <class Config>
 inline constexpr bool kHasFieldTable = FieldTable<std::remove_const_t<Config>>::kDefined;
-
-// An enumeration whose names (as files and bindings spell them, in enumerator order) are given
-// by an enum_names(E) beside it.
-template <class E, class = void>
-inline constexpr bool kHasEnumNames = false;
-template <class E>
-inline constexpr bool kHasEnumNames<E, std::void_t<decltype(enum_names(E{}))>> = true;
-
-// The name enum_names(E) gives `e`; nullptr for a value outside the enumeration.
-template <class E>
-[[nodiscard]] constexpr const char* enum_name(E e) noexcept {
-  constexpr auto names = enum_names(E{});
-  const auto i = static_cast<std::size_t>(e);
-  return i < names.size() ? names[i] : nullptr;
-}
-
-// The enumerator `name` spells; false, and `out` left as it was, if none does.
-template <class E>
-[[nodiscard]] constexpr bool enum_from_name(std::string_view name, E& out) noexcept {
-  constexpr auto names = enum_names(E{});
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (name == std::string_view(names[i])) {
-      out = static_cast<E>(i);
-      return true;
-    }
-  }
-  return false;
-}
 
 // Visits the fields of `c` (and, in lockstep, of `more`, configurations of the same struct
 // in another scalar type): v(field, c.member, more.member...).

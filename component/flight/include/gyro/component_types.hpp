@@ -19,15 +19,9 @@ namespace gyro {
 //   kFault     safe mode: torquers off; left only by a cage request once the fault clears
 enum class GyroMode : std::uint8_t { kIdle = 0, kCaged, kUncaging, kFree, kFault };
 
-[[nodiscard]] constexpr const char* to_string(GyroMode m) noexcept {
-  switch (m) {
-    case GyroMode::kIdle: return "idle";
-    case GyroMode::kCaged: return "caged";
-    case GyroMode::kUncaging: return "uncaging";
-    case GyroMode::kFree: return "free";
-    case GyroMode::kFault: return "fault";
-  }
-  return "unknown";
+// The names of the modes in logs, CSV files and bindings, in enum order.
+[[nodiscard]] constexpr std::array<const char*, 5> enum_names(GyroMode /*tag*/) noexcept {
+  return {"idle", "caged", "uncaging", "free", "fault"};
 }
 
 // What guidance asks for this tick.

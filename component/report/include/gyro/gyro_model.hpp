@@ -19,17 +19,9 @@
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
 #include "gyro/saturate.hpp"
+#include "gyro/torquer_axes.hpp"
 
 namespace gyro {
-
-// Where the torques act and what the friction rubs on.
-//   kGyro    the report's model: torques about the gyro's own axes, friction on its inertial
-//            rates (the rotor alone, on axes that never roll);
-//   kGimbal  the device's (gyro/gimbal_geometry.hpp): torquer commands (inner, outer) about
-//            the gimbal axes, friction on the gimbal rates relative to the body. Each step
-//            holds the resolved torque constant; the exact step itself is the report's.
-enum class TorquerAxes : std::uint8_t { kGyro = 0, kGimbal };
-[[nodiscard]] constexpr std::array<const char*, 2> enum_names(TorquerAxes /*tag*/) noexcept { return {"gyro", "gimbal"}; }
 
 template <typename T>
 struct GyroModelConfig {
@@ -45,7 +37,7 @@ struct GyroModelConfig {
   T small_angle_limit_rad{T(0.01)}; // the report's .01: at least 4 digits
   T gravity{T(9.80665)};            // in the units of the accelerations passed to step()
   GyroErrorSources<T> errors{};
-  TorquerAxes torquer_axes{TorquerAxes::kGyro};
+  TorquerAxes torquer_axes{TorquerAxes::kGyro};  // kGimbal: the torque resolved on the gyro axes is held over a step
 };
 
 // The fields (gyro/config_fields.hpp); a scenario gives them in its "rotor" and "limits".

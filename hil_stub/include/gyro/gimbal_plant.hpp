@@ -170,24 +170,34 @@ class GimbalPlant {
     drive.torque = torque;
     const Vector3<T> rate_dot = (body_end.rate_rad_s - body_start.rate_rad_s) / tick_s_;
     const Vector3<T> force_dot = (body_end.specific_force - body_start.specific_force) / tick_s_;
+    const bool unbalance = prm_.mass_unbalance != T(0);
+    const GimbalPowers powers = work_bookkeeping_ ? GimbalPowers::kCompute : GimbalPowers::kSkip;
+    SinCosNear<T> near_pitch, near_yaw;  // the sub-step's start: the stages' angles are near it
     bool saturated = false;
-    auto rhs = [&](T t, const State& x, State& dx, Integrals& q) noexcept {
+    auto rhs = [&](T t, const State& x, State& dx, Integrals* q) noexcept {
       BodyInstant<T> body;
       body.rate_rad_s = body_start.rate_rad_s + rate_dot * t;
       body.rate_dot_rad_s2 = rate_dot;
-      body.specific_force = body_start.specific_force + force_dot * t;
-      const GimbalAccelerations<T> acc = gimbal_accelerations(prm_, unpack(x), drive, body);
+      if (unbalance) body.specific_force = body_start.specific_force + force_dot * t;
+      const GimbalJointState<T> s = unpack(x);
+      const GimbalFrames<T> f = gimbal_frames(near_pitch, near_yaw, s.pitch_rad, s.yaw_rad);
+      const GimbalAccelerations<T> acc = gimbal_accelerations(prm_, s, f, drive, body, powers);
       dx << x(2), x(3), acc.pitch_acc, acc.yaw_acc, acc.spin_acc, acc.twist_rate;
-      q << acc.torquer_power, acc.friction_power, acc.spin_power, acc.unbalance_power, acc.motor_torque;
+      if (q != nullptr) {
+        *q << acc.torquer_power, acc.friction_power, acc.spin_power, acc.unbalance_power, acc.motor_torque;
+      }
       saturated = saturated || acc.motor_saturated;
     };
 
     const T h = tick_s_ / static_cast<T>(substeps_);
     State x = pack(state_);
     Integrals integral = Integrals::Zero();
+    Integrals* integral_wanted = work_bookkeeping_ ? &integral : nullptr;
     bool contact = false;
     for (int i = 0; i < substeps_; ++i) {  // substeps_ <= kMaxGimbalSubsteps, fixed at configure()
-      dormand_prince8_step(rhs, static_cast<T>(i) * h, h, x, integral);
+      near_pitch = SinCosNear<T>::at(x(0));
+      near_yaw = SinCosNear<T>::at(x(1));
+      dormand_prince8_step(rhs, static_cast<T>(i) * h, h, x, integral_wanted);
       GimbalJointState<T> s = unpack(x);
       if (resolve_gimbal_stop(stop_, prm_.inertia, s)) {
         contact = true;
@@ -204,7 +214,7 @@ class GimbalPlant {
     work_.friction += integral(1);
     work_.spin += integral(2);
     work_.unbalance += integral(3);
-    motor_torque_ = integral(4) / tick_s_;
+    motor_torque_ = work_bookkeeping_ ? integral(4) / tick_s_ : T(0);
     motor_saturated_ = saturated;
     contact_ = contact;
     return Status::kOk;
@@ -239,7 +249,12 @@ class GimbalPlant {
     return gimbal_generalised_momentum(prm_.inertia, frames(), rates());
   }
   [[nodiscard]] const GimbalWork<T>& work() const noexcept { return work_; }
-  // The last step: mean spin-motor torque, whether the motor hit its limit, stop contact.
+  // Whether step() integrates the works and the motor torque (work(), motor_torque()): on
+  // unless turned off. The equations then skip the powers: the SIL stub reads neither.
+  void set_work_bookkeeping(bool on) noexcept { work_bookkeeping_ = on; }
+  [[nodiscard]] bool work_bookkeeping() const noexcept { return work_bookkeeping_; }
+  // The last step: mean spin-motor torque (0 without the bookkeeping), whether the motor hit its
+  // limit, stop contact.
   [[nodiscard]] T motor_torque() const noexcept { return motor_torque_; }
   [[nodiscard]] bool motor_saturated() const noexcept { return motor_saturated_; }
   [[nodiscard]] bool in_contact() const noexcept { return contact_; }
@@ -290,6 +305,7 @@ class GimbalPlant {
   T motor_torque_{};
   bool motor_saturated_{false};
   bool contact_{false};
+  bool work_bookkeeping_{true};
 };
 
 }  // namespace gyro

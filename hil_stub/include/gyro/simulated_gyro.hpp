@@ -178,6 +178,7 @@ class SimulatedGyro final : public GyroPort<T> {
       GimbalPlant<T> gimbal;
       const ConfigCheck gc = gimbal.configure(c.gimbal, c.tick_s);
       if (!gc.ok()) return gc;
+      gimbal.set_work_bookkeeping(false);  // nothing here reads the works
       gimbal_ = gimbal;
     }
     config_ = c;

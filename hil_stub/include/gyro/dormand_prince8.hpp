@@ -13,6 +13,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 
 namespace gyro {
 
@@ -64,30 +66,59 @@ struct DormandPrince8Error {
 // not feed back, so the method's weights give their integral over the step, added to
 // *integral (null: none wanted). With `error_weight`, returns the step's error estimate in
 // the norm sqrt(sum (weight_i e_i)^2); else 0.
+namespace dp8_detail {
+// x + h sum_j a(i, j) k_j over the nonzero a(i, j), written out at compile time.
+template <std::size_t I, typename Vec, typename T, std::size_t... J>
+void stage_state(Vec& xi, const Vec& x, T h, const std::array<Vec, DormandPrince8::kStages>& k,
+                 std::index_sequence<J...> /*j < i*/) noexcept {
+  constexpr std::size_t kRow = I * (I - 1) / 2;
+  Vec sum = Vec::Zero();
+  ((DormandPrince8::a[kRow + J] != 0.0 ? (void)(sum += static_cast<T>(DormandPrince8::a[kRow + J]) * k[J]) : (void)0),
+   ...);
+  xi = x + h * sum;
+}
+
+template <typename T, int N, int M, typename Rhs, std::size_t... I>
+void stages(Rhs& rhs, T t, T h, const Eigen::Matrix<T, N, 1>& x,
+            std::array<Eigen::Matrix<T, N, 1>, DormandPrince8::kStages>& k, Eigen::Matrix<T, M, 1>* q,
+            Eigen::Matrix<T, M, 1>& q_sum, std::index_sequence<I...> /*stages*/) noexcept {
+  Eigen::Matrix<T, N, 1> xi;
+  auto stage = [&](auto i_tag) noexcept {
+    constexpr std::size_t kI = decltype(i_tag)::value;
+    if constexpr (kI == 0) {
+      xi = x;
+    } else {
+      stage_state<kI>(xi, x, h, k, std::make_index_sequence<kI>{});
+    }
+    rhs(t + static_cast<T>(DormandPrince8::c[kI]) * h, xi, k[kI], q);
+    if constexpr (DormandPrince8::b[kI] != 0.0) {
+      if (q != nullptr) q_sum += static_cast<T>(DormandPrince8::b[kI]) * *q;
+    }
+  };
+  (stage(std::integral_constant<std::size_t, I>{}), ...);
+}
+}  // namespace dp8_detail
+
+// Advances x over [t, t + h] of x' = f(t, x). `rhs(t, x, dx, q)` writes x' into dx and, when
+// q is not null, into *q quantities whose time integral is wanted (powers, a torque): they do
+// not feed back, so the method's weights give their integral over the step, added to
+// *integral (null: none wanted). With `error_weight`, returns the step's error estimate in
+// the norm sqrt(sum (weight_i e_i)^2); else 0.
 template <typename T, int N, int M, typename Rhs>
 T dormand_prince8_step(Rhs& rhs, T t, T h, Eigen::Matrix<T, N, 1>& x, Eigen::Matrix<T, M, 1>* integral,
                        const Eigen::Matrix<T, N, 1>* error_weight = nullptr) noexcept {
   using Tab = DormandPrince8;
   using Vec = Eigen::Matrix<T, N, 1>;
-  std::array<Vec, Tab::kStages> k{};
-  Eigen::Matrix<T, M, 1> q_stage = Eigen::Matrix<T, M, 1>::Zero();
+  std::array<Vec, Tab::kStages> k;
+  Eigen::Matrix<T, M, 1> q_stage;
   Eigen::Matrix<T, M, 1> q_sum = Eigen::Matrix<T, M, 1>::Zero();
-  Eigen::Matrix<T, M, 1>* q = integral != nullptr ? &q_stage : nullptr;
-  Vec dx_sum = Vec::Zero();
-  std::size_t row = 0;  // where row i of a starts: i (i - 1) / 2
-  for (std::size_t i = 0; i < k.size(); ++i) {
-    Vec xi = x;
-    for (std::size_t j = 0; j < i; ++j) {
-      const double aij = Tab::a[row + j];
-      if (aij != 0.0) xi += (h * static_cast<T>(aij)) * k[j];
-    }
-    row += i;
-    rhs(t + static_cast<T>(Tab::c[i]) * h, xi, k[i], q);
-    if (Tab::b[i] != 0.0) {
-      dx_sum += static_cast<T>(Tab::b[i]) * k[i];
-      if (q != nullptr) q_sum += static_cast<T>(Tab::b[i]) * q_stage;
-    }
-  }
+  dp8_detail::stages(rhs, t, h, x, k, integral != nullptr ? &q_stage : nullptr, q_sum,
+                     std::make_index_sequence<Tab::kStages>{});
+  // b is zero for stages 2 to 5.
+  const Vec dx_sum = static_cast<T>(Tab::b[0]) * k[0] + static_cast<T>(Tab::b[5]) * k[5] +
+                     static_cast<T>(Tab::b[6]) * k[6] + static_cast<T>(Tab::b[7]) * k[7] +
+                     static_cast<T>(Tab::b[8]) * k[8] + static_cast<T>(Tab::b[9]) * k[9] +
+                     static_cast<T>(Tab::b[10]) * k[10] + static_cast<T>(Tab::b[11]) * k[11];
   x += h * dx_sum;
   if (integral != nullptr) *integral += h * q_sum;
   if (error_weight == nullptr) return T(0);

@@ -95,12 +95,22 @@ struct GimbalAccelerations {
 
 namespace gimbal_detail {
 
+// tanh(x) from one expm1 (the library's tanh calls it and more): within rounding of it, and
+// exactly +-1 where tanh rounds to it (|x| > 20 in double, 10 in float).
+template <typename T>
+[[nodiscard]] T smooth_sign(T x) noexcept {
+  const T a = std::abs(x);
+  if (a > T(sizeof(T) == 4 ? 10 : 20)) return std::copysign(T(1), x);  // NaN goes on to expm1
+  const T e = std::expm1(T(2) * a);
+  return std::copysign(e / (e + T(2)), x);
+}
+
 // Viscous plus regularised dry friction; the tanh is skipped for a bearing configured without
 // dry friction (a configuration constant: every tick still costs the same).
 template <typename T>
 [[nodiscard]] T bearing_friction(T rate, T viscous, T coulomb, T inv_scale) noexcept {
   const T viscous_part = -viscous * rate;
-  return coulomb > T(0) ? viscous_part - coulomb * std::tanh(rate * inv_scale) : viscous_part;
+  return coulomb > T(0) ? viscous_part - coulomb * smooth_sign(rate * inv_scale) : viscous_part;
 }
 
 // Generalised forces (theta, psi) of a torque on the inner gimbal (its reaction on the body,

@@ -668,21 +668,20 @@ def gimbal_integrators_section(rdir):
 
 
 def campaign_run_section(rdir):
-    """One run of campaigns/seeker_faults.json, by part (campaign_run.csv)."""
+    """A run of campaigns/seeker_faults.json, by part, per run (campaign_run.csv)."""
     rows = read_csv(os.path.join(rdir, "campaign_run.csv"))
     if not rows:
         return "*Pending: scripts/bench.sh fills this section (campaign_run.csv was not produced).*"
     v = {r["part"]: float(r["instructions"]) for r in rows}
     run = v["run"]
-    lines = ["| part | instructions | share of the run |", "|---|--:|--:|"]
+    lines = [f"| part (per run, mean of {int(v['runs'])}) | instructions | share of the run |", "|---|--:|--:|"]
     for part, label in (("run", "the run (execute_run: scenario, SIL loop, metrics)"),
                         ("plant", "the gimbal plant (GimbalPlant::step)"),
                         ("component", "the flight component (GyroComponent::step)"),
                         ("overhead", "the run's set-up and bookkeeping (the run less its SIL loop's ticks)")):
         lines.append(f"| {label} | {fmt_int(v[part])} | {100 * v[part] / run:.1f} % |")
-    lines.append(f"| start-up of the process (reading the campaign, loading libraries), once per campaign "
-                 f"| {fmt_int(v['total'] - run)} | |")
-    lines.append(f"| the one-run campaign in all | {fmt_int(v['total'])} | |")
+    lines.append(f"| once per campaign: the process's start-up (libraries, reading the campaign) "
+                 f"| {fmt_int(v['startup'])} | |")
     return "\n".join(lines)
 
 

@@ -140,15 +140,15 @@ template <typename T>
   const T th_d = s.pitch_rate_rad_s, ps_d = s.yaw_rate_rad_s, ph_d = s.spin_rate_rad_s;
   const GimbalBodyRates<T> w = gimbal_body_rates(f, s, body.rate_rad_s);
 
-  // a_b0: each body's angular acceleration with the joint accelerations set to zero.
-  const Vector3<T> w_body_outer = f.body_to_outer(body.rate_rad_s);
+  // a_b0: each body's angular acceleration with the joint accelerations set to zero. The body
+  // rate in outer axes and W_O in inner axes differ from W_O and W_I only in the components
+  // the joint rates add to (z and y), which these terms do not use.
   Vector3<T> a_outer = f.body_to_outer(body.rate_dot_rad_s2);
-  a_outer(0) += ps_d * w_body_outer(1);  // psi' (w x z)
-  a_outer(1) -= ps_d * w_body_outer(0);
-  const Vector3<T> w_outer_inner = f.outer_to_inner(w.outer);
+  a_outer(0) += ps_d * w.outer(1);  // psi' (w x z)
+  a_outer(1) -= ps_d * w.outer(0);
   Vector3<T> a_inner = f.outer_to_inner(a_outer);
-  a_inner(0) -= th_d * w_outer_inner(2);  // theta' (W_O x y)
-  a_inner(2) += th_d * w_outer_inner(0);
+  a_inner(0) -= th_d * w.inner(2);  // theta' (W_O x y)
+  a_inner(2) += th_d * w.inner(0);
   // a_R0 = a_I0 + phi' (W_I x x); its x component is a_I0's.
   const T a_rotor_y = a_inner(1) + ph_d * w.inner(2);
   const T a_rotor_z = a_inner(2) - ph_d * w.inner(1);
@@ -181,11 +181,12 @@ template <typename T>
     const T fr2 = bearing_friction(w2, prm.friction(1), prm.coulomb(1), prm.inv_coulomb_scale);
     q_friction = on_joints(f, Vector3<T>(fr1 * y_gyro + fr2 * z_gyro));
   }
-  // Unbalance: -m d x_I x f on the rotor = m d (0, f_z, -f_y) in inner axes.
+  // Unbalance: -m d x_I x f on the rotor = m d (0, f_z, -f_y) in inner axes: on the joints
+  // (m d f_z, -cos(theta) m d f_y).
   Vector2<T> q_unbalance = Vector2<T>::Zero();
   if (prm.mass_unbalance != T(0)) {
     const Vector3<T> f_inner = f.outer_to_inner(f.body_to_outer(body.specific_force));
-    q_unbalance = on_joints(f, Vector3<T>(T(0), prm.mass_unbalance * f_inner(2), -prm.mass_unbalance * f_inner(1)));
+    q_unbalance = Vector2<T>(prm.mass_unbalance * f_inner(2), -f.cp * prm.mass_unbalance * f_inner(1));
   }
   const T drag = -prm.spin_drag * ph_d;
 

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <type_traits>
@@ -439,6 +440,12 @@ void record_values(const json& j, const std::string& path, std::map<std::string,
 
 }  // namespace
 
+std::map<std::string, std::string> written_values(const Scenario& s) {
+  std::map<std::string, std::string> out;
+  if (s.document) record_values(*s.document, "", out);
+  return out;
+}
+
 ScenarioError::ScenarioError(std::string file, std::string field, std::string reason)
     : std::runtime_error(printable(file) + ": " + printable(field) + ": " + printable(reason)),
       file_(std::move(file)),
@@ -486,7 +493,7 @@ Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& f
   s.body = parse_body(
       top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force"}), s);
   s.guidance = parse_guidance(top.object("guidance", {"schedule"}), s.run, s.file);
-  record_values(doc, "", s.values);
+  s.document = std::make_shared<const json>(doc);
   return s;
 }
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <stdexcept>
@@ -89,10 +90,13 @@ struct Scenario {
   bool body_rate_pitch_yaw_only{false};  // body.rate_rad_s written as (q, r)
   bool body_accel_lateral_normal{false};  // body.accel written (lateral y, normal z)
   std::vector<GuidanceEvent> guidance;      // sorted by time
-  // Every number, string and boolean of the file as written, by JSON path (for messages
-  // about a value the component or the stub refused).
-  std::map<std::string, std::string> values;
+  // The file as written (for messages about a value the component or the stub refused, and
+  // the float run's range check; written_values() lists it by JSON path, when asked).
+  std::shared_ptr<const nlohmann::json> document;
 };
+
+// Every number, string and boolean of the scenario's file as written, by JSON path.
+[[nodiscard]] std::map<std::string, std::string> written_values(const Scenario& s);
 
 // Parses and checks the schema and the values the component and stub do not check
 // themselves (times, names, counts). Throws ScenarioError; `file` names the source.

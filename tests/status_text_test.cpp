@@ -1,4 +1,4 @@
-// The texts of the status enumerations (Status, GyroMode, PortStatus): each enumerator's its
+// The texts of the status enumerations (Status, GyroMode, PortStatus): each enumerator has its
 // own, and a value no enumerator has (a corrupted telemetry field) is named, never read out of
 // bounds.
 #include <gtest/gtest.h>

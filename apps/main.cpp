@@ -334,7 +334,7 @@ int main(int argc, char** argv) {
                    "gyro_sil: %s: %llu ticks (%.6g s simulated, %s) in %.3f s; final mode %s; flags raised: %s%s%s\n",
                    shown.c_str(), static_cast<unsigned long long>(sum.ticks),
                    static_cast<double>(sum.ticks) * scenario.run.tick_s, to_string(sum.precision), sum.wall_s,
-                   gyro::enum_name(sum.final_mode), flags.empty() ? "none" : flags.c_str(),
+                   gyro::enum_name_or(sum.final_mode, "?"), flags.empty() ? "none" : flags.c_str(),
                    to_file ? "; wrote " : "", to_file ? printable(plan.csv.given).c_str() : "");
       if (sum.pil) print_pil_summary(*sum.pil);
       if (plotting && plot_failure.empty()) std::fprintf(stderr, "gyro_sil: plot: %s\n", printable(plot_path).c_str());

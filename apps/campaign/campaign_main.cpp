@@ -30,8 +30,10 @@
 #include "plot.hpp"
 #include "printable.hpp"
 #include "progress_line.hpp"
+#include "run_plot.hpp"
 #include "run_pool.hpp"
 #include "run_table.hpp"
+#include "run_timeline.hpp"
 #include "signal_cleanup.hpp"
 #include "sil_runner.hpp"
 #include "summary.hpp"
@@ -308,27 +310,14 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
   return status;
 }
 
-gyro::sil::PlotRequest run_plot(const fs::path& csv, const fs::path& png, std::uint64_t k, const RunResult& r) {
-  using gyro::sil::csv_column;
-  gyro::sil::PlotRequest p;
-  p.csv = csv;
-  p.png = png;
-  p.title = "campaign run " + std::to_string(k) + " (seed " + std::to_string(r.plan.seed) + ")";
+// The title of run K's plot: the campaign's run, its seed and its fault.
+std::string run_title(std::uint64_t k, const RunResult& r) {
+  std::string title = "campaign run " + std::to_string(k) + " (seed " + std::to_string(r.plan.seed) + ")";
   if (r.plan.fault && r.plan.fault->kind) {
-    p.title += "\n" + std::string(gyro::fault_kind_name(*r.plan.fault->kind)) + " at " +
-               format_significant(r.plan.fault->start_s, 4) + " s, axis " + std::to_string(r.plan.fault->axis);
+    title += "\n" + std::string(gyro::fault_kind_name(*r.plan.fault->kind)) + " at " +
+             format_significant(r.plan.fault->start_s, 4) + " s, axis " + std::to_string(r.plan.fault->axis);
   }
-  p.time_column = csv_column("t");
-  for (const char* axis : {"pitch", "yaw"}) {
-    const std::string a(axis);
-    p.panels.push_back({"gimbal " + a + " (rad)",
-                        {{csv_column("gimbal_" + a), "true", false, "lw 3 lc rgb '#9a9a9a'"},
-                         {csv_column("gimbal_" + a + "_meas"), "measured (accepted)", true, "lc rgb '#d62728'"},
-                         {csv_column("gimbal_" + a + "_pred"), "estimated", false, "lw 1 dt 2 lc rgb '#1f4e9c'"}}});
-  }
-  p.panels.push_back({"residual (rad)",
-                      {{csv_column("residual_pitch"), "pitch", false, ""}, {csv_column("residual_yaw"), "yaw", false, ""}}});
-  return p;
+  return title;
 }
 
 // --run K: one run alone, with its scenario, time history, plot and table row.
@@ -358,11 +347,21 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
   }
   int status = 0;
   try {
-    out->write(stem + ".json", plan_run(c, k).scenario.dump(2) + "\n");
+    const RunPlan plan = plan_run(c, k);
+    out->write(stem + ".json", plan.scenario.dump(2) + "\n");
+    // The scenario's limits and tick for the plot (a scenario refused here is refused by the run too).
+    std::optional<gyro::sil::Scenario> scenario;
+    try {
+      scenario = gyro::sil::parse_scenario_document(plan.scenario, stem + ".json");
+    } catch (const gyro::sil::ScenarioError&) {
+    }
     gyro::sil::TempFile tmp = out->temporary_for(stem + ".csv");
     gyro::sil::CsvWriter csv(tmp.stream());
     gyro::sil::CsvObserver history(csv);
-    const RunResult r = execute_run(c, k, &history);
+    gyro::sil::TimelineObserver timeline(scenario ? scenario->run.tick_s : 1.0,
+                                         scenario ? gyro::sil::timeline_resolution_s(*scenario) : 1.0);
+    gyro::sil::FanOutObserver observers({&history, &timeline});
+    const RunResult r = execute_run(c, k, &observers);
     bool written = csv.ok();
     try {
       tmp.close();
@@ -372,11 +371,12 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
     const bool has_history = r.status != RunStatus::kRefused && written;
     if (has_history) out->publish(tmp, stem + ".csv");  // else removed with `tmp`
     out->write(stem + "-metrics.csv", csv_line(table_header(c)) + "\n" + format_row(c, r));
-    if (has_history && !o.no_plots) {
+    if (has_history && !o.no_plots && scenario) {
       gyro::sil::TempFile png_tmp = out->temporary_for(stem + ".png");
       png_tmp.close();  // gnuplot writes it
       try {
-        gyro::sil::plot_csv(run_plot(out->path() / (stem + ".csv"), png_tmp.path(), k, r));
+        gyro::sil::plot_csv(gyro::sil::run_plot(out->path() / (stem + ".csv"), png_tmp.path(), run_title(k, r), *scenario,
+                                                timeline.timeline()));
         out->publish(png_tmp, stem + ".png");
       } catch (const gyro::sil::PlotError& e) {
         say(std::string("plot failed: ") + e.what());  // the temporary is removed with `png_tmp`

@@ -1,6 +1,6 @@
 // gyro_campaign: Monte Carlo campaigns of SIL runs, from one core to a cluster.
 //
-//   gyro_campaign run CAMPAIGN.json -o DIR [-j N] [--shard I/N] [--no-plots] [--quiet]
+//   gyro_campaign run CAMPAIGN.json -o DIR [-j N] [--runs N] [--shard I/N] [--no-plots] [--quiet]
 //   gyro_campaign run CAMPAIGN.json --run K -o DIR [--no-plots]
 //   gyro_campaign merge DIR... -o DIR [--no-plots] [--quiet]
 //   mpirun -np N gyro_campaign run CAMPAIGN.json -o DIR [-j M]
@@ -64,6 +64,8 @@ struct Options {
   std::string shard;
   std::string run_text;
   std::optional<std::uint64_t> run;
+  std::string runs_text;
+  std::optional<std::uint64_t> runs;  // the first N runs only
   bool no_plots{false};
   bool quiet{false};
 };
@@ -203,6 +205,13 @@ std::vector<fs::path> inputs_of(const std::string& campaign_path, const Campaign
   return in;
 }
 
+// The campaign file, with --runs N applied.
+Campaign read_options_campaign(const Options& o) {
+  Campaign c = read_campaign(o.campaign);
+  if (o.runs) keep_first_runs(c, *o.runs);
+  return c;
+}
+
 // Rank 0: gathers every row of the shard (its own and the other ranks').
 std::vector<std::string> gather(gyro::campaign::Cluster& cluster, RunPool& pool, const Shard& s, const Options& o) {
   std::vector<std::string> rows(s.end - s.first);
@@ -260,7 +269,7 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
   std::string why;
   if (cluster.root()) {
     try {
-      c = read_campaign(o.campaign);
+      c = read_options_campaign(o);
       if (!parse_shard(o.shard, c.runs, why)) throw std::invalid_argument(why);
       out.emplace(o.out, inputs_of(o.campaign, c));
       out->claim(kOutputs);
@@ -331,7 +340,7 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
   Campaign c;
   std::optional<OutputDir> out;
   try {
-    c = read_campaign(o.campaign);
+    c = read_options_campaign(o);
     if (k >= c.runs) {
       say("--run " + std::to_string(k) + ": the campaign has runs 0 to " + std::to_string(c.runs - 1));
       return kExitBadInput;
@@ -478,6 +487,14 @@ bool check_values(const CLI::App& run, Options& o, std::string& why) {
     o.run = parse_count("--run", o.run_text, kMaxRuns - 1, why);
     if (!o.run) return false;
   }
+  if (run.count("--runs") > 0) {
+    o.runs = parse_count("--runs", o.runs_text, kMaxRuns, why);
+    if (!o.runs) return false;
+    if (*o.runs == 0) {
+      why = "--runs 0: run at least one";
+      return false;
+    }
+  }
   return true;
 }
 
@@ -501,6 +518,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   run->add_option("--shard", o.shard, "run only shard I of N (1 <= I <= N) and write it for gyro_campaign merge");
   run->add_option("--run", o.run_text, "rerun run K alone: its scenario, time history (gyro_sil CSV), plot and row");
+  run->add_option("--runs", o.runs_text,
+                  "run only the first N of the file's runs (each the same as in the whole campaign)");
   run->add_flag("--no-plots", o.no_plots, "no gnuplot plots");
   run->add_flag("-q,--quiet", o.quiet, "no progress or summary line on standard error");
   CLI::App* merge_cmd = app.add_subcommand("merge", "merge the output directories of a campaign's shards");

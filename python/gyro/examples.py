@@ -40,8 +40,9 @@ def _example(name):
 
 
 def seeker() -> Example:
-    """The seeker gyro (gyro/seeker_example.hpp): SI, on the gimbal plant; the configuration
-    of scenarios/seeker_slew.json."""
+    """The seeker gyro (gyro/seeker_example.hpp): SI, on the gimbal plant, 2 kHz tick, ideal
+    pickoffs and torquers. scenarios/seeker_slew.json flies the same rotor and gimbal at 1 kHz
+    with the device's imperfections and other limits (docs/gyro-model.md)."""
     return _example("seeker")
 
 

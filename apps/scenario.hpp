@@ -104,6 +104,22 @@ struct Scenario {
 // The same from a parsed document (gyro_campaign's dispersed scenarios).
 [[nodiscard]] Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& file);
 
+// A scenario's "gyro" section alone, at the tick tick_s, with the keys, defaults and refusals
+// of docs/scenarios.md: a Scenario whose gyro (and fault_count, run.tick_s) is set, for
+// gyro_field_path(). Refusals name the field below `path` ("rotor.pitch_inertia" for path "").
+// The Python module's SimulatedGyro takes its keywords this way. Throws ScenarioError.
+[[nodiscard]] Scenario parse_gyro_section(const nlohmann::json& gyro, double tick_s, const std::string& file,
+                                          const std::string& path);
+// The same for the "component" section (the Scenario's component).
+[[nodiscard]] Scenario parse_component_section(const nlohmann::json& component, double tick_s,
+                                               const std::string& file, const std::string& path);
+
+// The sections a scenario writes for these configurations: what parse_gyro_section and
+// parse_component_section read back as them (every field written, the gyro's first
+// `fault_count` faults). The example gyros' scenario form (gyro.examples in Python).
+[[nodiscard]] nlohmann::json gyro_section(const SimulatedGyroConfig<double>& c, std::size_t fault_count);
+[[nodiscard]] nlohmann::json component_section(const GyroComponentConfig<double>& c);
+
 // Reads the file and parses it. A file that cannot be opened or read, a directory, or more
 // than kMaxScenarioBytes is a ScenarioError with field "(file)"; reading is bounded even for
 // /dev/zero or a pipe.

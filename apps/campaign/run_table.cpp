@@ -39,8 +39,10 @@ std::vector<std::string> metric_cells(const Campaign& c, const RunResult& r) {
   }
   if (ms.safe_mode) {
     out.push_back(m ? optional_cell(m->safe_mode_s) : "");
+    out.push_back(m ? m->safe_mode_cause : "");
     out.push_back(m && m->detected ? bool_cell(*m->detected) : "");
     out.push_back(m ? bool_cell(m->false_alarm) : "");
+    out.push_back(m ? bool_cell(m->safe_mode_after_stop) : "");
     out.push_back(m ? optional_cell(m->latency_s) : "");
   }
   if (ms.slew_rate_error) out.push_back(m ? optional_cell(m->slew_rate_error_rad_s) : "");
@@ -49,7 +51,10 @@ std::vector<std::string> metric_cells(const Campaign& c, const RunResult& r) {
   for (int bit : ms.flag_counters) {
     out.push_back(m ? std::to_string(m->counters[static_cast<std::size_t>(bit)]) : "");
   }
-  if (ms.gimbal_stop) out.push_back(m ? number_cell(m->time_at_stop_s) : "");
+  if (ms.gimbal_stop) {
+    out.push_back(m ? optional_cell(m->stop_contact_s) : "");
+    out.push_back(m ? number_cell(m->time_at_stop_s) : "");
+  }
   return out;
 }
 

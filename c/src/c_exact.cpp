@@ -5,6 +5,7 @@
 
 #include "c_arrays.hpp"
 #include "gyro/gyro.h"
+#include "gyro/report_sample.hpp"  // initg_step
 #include "gyro/rotor_transition.hpp"
 
 namespace gyro::c_api {
@@ -171,6 +172,16 @@ int gyro_compute_modes_d(const gyro_rotor_parameters_d* p, gyro_rotor_modes_d* o
   if (st != gyro::Status::kOk) return static_cast<int>(st);
   *out = gyro_rotor_modes_d{m.alpha_1_s,           m.beta_squared_1_s2,   m.beta_rad_s,  m.natural_rate_rad_s,
                             m.slow_decay_rate_1_s, m.fast_decay_rate_1_s, m.nutation_hz, static_cast<int>(m.regime)};
+  return GYRO_OK;
+}
+
+int gyro_initg_step_d(const gyro_rotor_parameters_d* p, double* step_s) {
+  if (p == nullptr || step_s == nullptr) return GYRO_NULL_ARGUMENT;
+  const gyro::Status st = gyro::validate(c::params_of<double>(*p));
+  if (st != gyro::Status::kOk) return static_cast<int>(st);
+  const double step = gyro::initg_step(c::params_of<double>(*p));
+  if (!(step > 0.0)) return GYRO_OUT_OF_RANGE;
+  *step_s = step;
   return GYRO_OK;
 }
 

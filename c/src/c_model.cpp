@@ -173,10 +173,10 @@ uint32_t gyro_model_f_flags(const gyro_model_f* m) { return m != nullptr ? m->mo
 int gyro_model_d_uncaged(const gyro_model_d* m) { return m != nullptr && m->model.uncaged() ? 1 : 0; }
 int gyro_model_f_uncaged(const gyro_model_f* m) { return m != nullptr && m->model.uncaged() ? 1 : 0; }
 
-int gyro_report_sample_get(gyro_report_sample* out) {
+int gyro_report_sample_get(gyro_report_sample* out, gyro_model_config* config) {
   using S = gyro::ReportSample<double>;
-  if (out == nullptr) return GYRO_NULL_ARGUMENT;
-  if (!c::write_config(c::kModelConfig, S::config(), &out->config)) return GYRO_INTERNAL_ERROR;
+  if (out == nullptr || config == nullptr) return GYRO_NULL_ARGUMENT;
+  if (!c::write_config(c::kModelConfig, S::config(), config)) return GYRO_INTERNAL_ERROR;
   out->spin_hz = S::kSpinHz;
   out->body_rate_rad_s[0] = S::kBodyPitchRate;
   out->body_rate_rad_s[1] = S::kBodyYawRate;

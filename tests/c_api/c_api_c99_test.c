@@ -106,6 +106,10 @@ static void test_exact_step(void) {
   CHECK(gyro_make_transition_d(NULL, 1e-3, &tr) == GYRO_NULL_ARGUMENT);
   CHECK(gyro_compute_modes_d(&p, &modes) == GYRO_OK);
   CHECK(modes.regime == 0 && fabs(modes.nutation_hz - 141.42) < 0.01);
+  CHECK(gyro_initg_step_d(&p, &h) == GYRO_OK && h == 1.0 / floor(20.0 * modes.nutation_hz));
+  p.friction = 40.0; /* overdamped: no nutation, no step */
+  p.angular_momentum = 0.0;
+  CHECK(gyro_initg_step_d(&p, &h) == GYRO_OUT_OF_RANGE && h == 1.0 / floor(20.0 * modes.nutation_hz));
   p.friction = -1.0;
   CHECK(gyro_make_transition_d(&p, 1e-3, &tr) == GYRO_NEGATIVE_FRICTION);
 }
@@ -177,6 +181,7 @@ static void multiply(const double a[9], const double b[9], double c[9]) {
  * ROTEG) seen from the body (ROTEB): pitch = atan2(-z, |(x, y)|), yaw = atan2(y, x). */
 static void test_report_sample(void) {
   gyro_report_sample s;
+  gyro_model_config config;
   gyro_model_d_storage sd;
   gyro_model_f_storage sf;
   gyro_model_d* md;
@@ -190,8 +195,8 @@ static void test_report_sample(void) {
   CHECK(gyro_model_d_init(&sd, gyro_model_d_storage_size() - 1) == NULL);
   md = gyro_model_d_init(&sd, sizeof sd);
   mf = gyro_model_f_init(&sf, sizeof sf);
-  CHECK(gyro_report_sample_get(&s) == GYRO_OK && s.steps == 801);
-  CHECK(gyro_model_d_configure(md, &s.config, NULL) == GYRO_OK && gyro_model_f_configure(mf, &s.config, NULL) == GYRO_OK);
+  CHECK(gyro_report_sample_get(&s, &config) == GYRO_OK && s.steps == 801);
+  CHECK(gyro_model_d_configure(md, &config, NULL) == GYRO_OK && gyro_model_f_configure(mf, &config, NULL) == GYRO_OK);
   memset(&in, 0, sizeof in);
   memset(&inf, 0, sizeof inf);
   in.dt_s = s.initg_step_s;

@@ -65,8 +65,8 @@ TYPED_TEST_SUITE(CApiModel, Scalars);
 // The report's sample gyro with an error source of each kind, through the C struct.
 gyro_model_config sample_config_with_errors(bool on_gimbal) {
   gyro_report_sample s{};
-  EXPECT_EQ(gyro_report_sample_get(&s), GYRO_OK);
-  gyro_model_config c = s.config;
+  gyro_model_config c{};
+  EXPECT_EQ(gyro_report_sample_get(&s, &c), GYRO_OK);
   c.errors.pitch.static_drift_rad_s = 1e-3;
   c.errors.yaw.in_plane_erection_1_s = 0.2;
   c.errors.pitch.cross_plane_erection_1_s = -0.1;
@@ -170,14 +170,15 @@ TYPED_TEST(CApiModel, GivenARefusedStepThenTheModelIsAsItWas) {
   std::vector<double> storage(C<T>::size() / sizeof(double) + 1);
   typename C<T>::Model* m = C<T>::init(storage.data(), storage.size() * sizeof(double));
   gyro_report_sample s{};
-  ASSERT_EQ(gyro_report_sample_get(&s), GYRO_OK);
+  gyro_model_config config{};
+  ASSERT_EQ(gyro_report_sample_get(&s, &config), GYRO_OK);
   typename C<T>::Input in{};
   const T w[2] = {T(0.1), T(0.2)};
   in.dt_s = T(1e-3);
   in.spin_hz = T(100);
   for (int i = 0; i < 9; i += 4) in.R_earth_to_body[i] = T(1);
   EXPECT_EQ(C<T>::slew(m, &in, w), GYRO_NOT_CONFIGURED);
-  ASSERT_EQ(C<T>::configure(m, &s.config), GYRO_OK);
+  ASSERT_EQ(C<T>::configure(m, &config), GYRO_OK);
   EXPECT_EQ(C<T>::slew(m, &in, w), GYRO_NOT_CONFIGURED);  // caged
   ASSERT_EQ(C<T>::uncage(m, in.R_earth_to_body, w), GYRO_OK);
   ASSERT_EQ(C<T>::slew(m, &in, w), GYRO_OK);
@@ -205,12 +206,13 @@ TYPED_TEST(CApiModel, GivenStorageAtAnyOffsetThenItHoldsAModel) {
 
 TEST(CApiModel, GivenAFloatOverflowingConfigurationThenTheFieldIsNamedAsGiven) {
   gyro_report_sample s{};
-  ASSERT_EQ(gyro_report_sample_get(&s), GYRO_OK);
-  s.config.gravity = 1e300;
+  gyro_model_config config{};
+  ASSERT_EQ(gyro_report_sample_get(&s, &config), GYRO_OK);
+  config.gravity = 1e300;
   gyro_refusal r{};
   gyro_model_f_storage storage;
   gyro_model_f* m = gyro_model_f_init(&storage, sizeof storage);
-  EXPECT_EQ(gyro_model_f_configure(m, &s.config, &r), GYRO_OUT_OF_RANGE);
+  EXPECT_EQ(gyro_model_f_configure(m, &config, &r), GYRO_OUT_OF_RANGE);
   EXPECT_STREQ(r.field, "gravity");
   EXPECT_EQ(r.value, 1e300);
   EXPECT_EQ(r.relation, 2);  // above
@@ -221,8 +223,9 @@ TEST(CApiModel, GivenModelsOnTheHeapThenTheyWorkAsInStorage) {
   gyro_model_d* m = gyro_model_d_create();
   ASSERT_NE(m, nullptr);
   gyro_report_sample s{};
-  ASSERT_EQ(gyro_report_sample_get(&s), GYRO_OK);
-  EXPECT_EQ(gyro_model_d_configure(m, &s.config, nullptr), GYRO_OK);
+  gyro_model_config config{};
+  ASSERT_EQ(gyro_report_sample_get(&s, &config), GYRO_OK);
+  EXPECT_EQ(gyro_model_d_configure(m, &config, nullptr), GYRO_OK);
   gyro_model_d_destroy(m);
   gyro_model_f_destroy(nullptr);
 }

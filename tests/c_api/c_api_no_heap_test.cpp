@@ -25,18 +25,19 @@ TEST(CApiNoHeap, GivenTheCanaryThenAModelOnTheHeapIsCounted) {
 
 TEST(CApiNoHeap, GivenTheFlightPartThenNoAllocation) {
   gyro_report_sample s{};
+  gyro_model_config config{};
   gyro_model_d_storage sd;
   gyro_model_f_storage sf;
   int failed = 0;
   double gimbal[2] = {0, 0};
   char text[128];
   const HeapUse use = measure_heap([&] {
-    failed += gyro_report_sample_get(&s) != GYRO_OK;
+    failed += gyro_report_sample_get(&s, &config) != GYRO_OK;
     gyro_model_d* md = gyro_model_d_init(&sd, sizeof sd);
     gyro_model_f* mf = gyro_model_f_init(&sf, sizeof sf);
     gyro_refusal r;
-    failed += gyro_model_d_configure(md, &s.config, &r) != GYRO_OK;
-    failed += gyro_model_f_configure(mf, &s.config, &r) != GYRO_OK;
+    failed += gyro_model_d_configure(md, &config, &r) != GYRO_OK;
+    failed += gyro_model_f_configure(mf, &config, &r) != GYRO_OK;
     gyro_step_input_d in{};
     gyro_step_input_f inf{};
     in.dt_s = s.initg_step_s;
@@ -55,7 +56,7 @@ TEST(CApiNoHeap, GivenTheFlightPartThenNoAllocation) {
     double roteg[9];
     gyro_model_d_R_earth_to_gyro(md, roteg);
     failed += gyro_nearest_rotation_d(roteg, roteg) != GYRO_OK;
-    gyro_model_config bad = s.config;
+    gyro_model_config bad = config;
     bad.friction = -1.0;
     failed += gyro_model_d_configure(md, &bad, &r) != GYRO_NEGATIVE_FRICTION;
     failed += gyro_refusal_text(&r, text, sizeof text) <= 0;

@@ -329,17 +329,20 @@ int gyro_frame_rotation_d(int axis, double angle_rad, double R[9]);
 int gyro_nearest_rotation_d(const double R[9], double out[9]);
 int gyro_nearest_rotation_f(const float R[9], float out[9]);
 
-/* The report's sample run (GYMAIN with INITG; gyro/report_sample.hpp): its gyro, spin, body
- * rates, slew command, INITG's step and step count, as the examples use them. */
+/* The report's sample run (GYMAIN with INITG; gyro/report_sample.hpp): its gyro (into config),
+ * spin, body rates, slew command, INITG's step and step count, as the examples use them. */
 typedef struct gyro_report_sample {
-  gyro_model_config config;
   double spin_hz;
   double body_rate_rad_s[2]; /* (pitch, yaw) */
   double slew_rate_rad_s[2]; /* the command, before the limits */
-  double initg_step_s;       /* 1/floor(20 x nutation Hz) */
+  double initg_step_s;       /* INITG's step for its gyro (gyro_initg_step_d) */
   int steps;
 } gyro_report_sample;
-int gyro_report_sample_get(gyro_report_sample* out);
+int gyro_report_sample_get(gyro_report_sample* out, gyro_model_config* config);
+/* INITG's step for a rotor: 1/floor(20 x nutation Hz), at least 20 steps a nutation cycle.
+ * GYRO_OUT_OF_RANGE (and *step_s untouched) when the rotor does not nutate at 0.05 Hz or more:
+ * the listing divides by zero there, or takes the root of a negative number when overdamped. */
+int gyro_initg_step_d(const gyro_rotor_parameters_d* p, double* step_s);
 
 /* ---------------------------------------------------------------------------------------------
  * Host only (not in the bare-metal library): models on the heap, the gimbal plant, SIL runs. */

@@ -44,8 +44,9 @@ void to_c(const RotorTransition<T>& tr, typename Types<T>::Transition& out) noex
   std::memcpy(c + 12, tr.angle_from_torque.data(), 4 * sizeof(T));
   c[16] = tr.dt_s;
 }
+// Inlined into the step (out of line it costs a call and a default-initialised copy).
 template <typename T>
-RotorTransition<T> from_c(const typename Types<T>::Transition& in) noexcept {
+[[gnu::always_inline]] inline RotorTransition<T> from_c(const typename Types<T>::Transition& in) noexcept {
   RotorTransition<T> tr;
   const T* c = in.coefficients;
   std::memcpy(tr.rate_from_rate.data(), c, 4 * sizeof(T));

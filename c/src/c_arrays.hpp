@@ -1,9 +1,29 @@
-// gyro.h's arrays to and from Eigen: matrices row by row (r[3*i + j] = R(i, j)), vectors in order.
+// gyro.h's types for a scalar type, and its arrays to and from Eigen: matrices row by row
+// (r[3*i + j] = R(i, j)), vectors in order.
 #pragma once
 
 #include "gyro/attitude.hpp"
+#include "gyro/gyro.h"
 
 namespace gyro::c_api {
+
+// gyro.h's structs and handles in double and float.
+template <typename T>
+struct Types;
+template <>
+struct Types<double> {
+  using Params = gyro_rotor_parameters_d;
+  using Transition = gyro_transition_d;
+  using Handle = gyro_model_d;
+  using Input = gyro_step_input_d;
+};
+template <>
+struct Types<float> {
+  using Params = gyro_rotor_parameters_f;
+  using Transition = gyro_transition_f;
+  using Handle = gyro_model_f;
+  using Input = gyro_step_input_f;
+};
 
 template <typename T>
 [[nodiscard]] Matrix3<T> matrix_of(const T* r) noexcept {

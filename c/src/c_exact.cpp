@@ -11,19 +11,6 @@
 namespace gyro::c_api {
 namespace {
 
-template <typename T>
-struct Types;
-template <>
-struct Types<double> {
-  using Params = gyro_rotor_parameters_d;
-  using Transition = gyro_transition_d;
-};
-template <>
-struct Types<float> {
-  using Params = gyro_rotor_parameters_f;
-  using Transition = gyro_transition_f;
-};
-
 static_assert(sizeof(gyro_transition_d::coefficients) == 4 * sizeof(Matrix2<double>) + sizeof(double),
               "E0, E1, E1 J^-1, E2 J^-1 and dt");
 static_assert(sizeof(gyro_transition_f::coefficients) == 4 * sizeof(Matrix2<float>) + sizeof(float),

@@ -11,21 +11,6 @@
 namespace gyro::c_api {
 namespace {
 
-template <typename T>
-struct Types;
-template <>
-struct Types<double> {
-  using Handle = gyro_model_d;
-  using Input = gyro_step_input_d;
-  static constexpr std::size_t kStorage = GYRO_MODEL_D_STORAGE_BYTES;
-};
-template <>
-struct Types<float> {
-  using Handle = gyro_model_f;
-  using Input = gyro_step_input_f;
-  static constexpr std::size_t kStorage = GYRO_MODEL_F_STORAGE_BYTES;
-};
-
 // Bytes a handle needs in storage of any alignment.
 template <typename T>
 constexpr std::size_t kNeeded = sizeof(typename Types<T>::Handle) + alignof(typename Types<T>::Handle) - 1;

@@ -8,34 +8,14 @@
 #include <cstring>
 #include <limits>
 
+#include "c_api/c_api_scalar.hpp"
 #include "gyro/gyro.h"
 #include "gyro/rotor_transition.hpp"
 
 namespace gyro {
 namespace {
 
-template <typename T>
-struct C;
-template <>
-struct C<double> {
-  using Params = gyro_rotor_parameters_d;
-  using Transition = gyro_transition_d;
-  static int make(const Params* p, double dt, Transition* t) { return gyro_make_transition_d(p, dt, t); }
-  static int advance(const Transition* t, const double* q, double* s) { return gyro_advance_d(t, q, s); }
-  static int batch(const Transition* t, double* s, std::size_t n, const double* q, std::size_t stride, std::uint8_t* st) {
-    return gyro_advance_batch_d(t, s, n, q, stride, st);
-  }
-};
-template <>
-struct C<float> {
-  using Params = gyro_rotor_parameters_f;
-  using Transition = gyro_transition_f;
-  static int make(const Params* p, float dt, Transition* t) { return gyro_make_transition_f(p, dt, t); }
-  static int advance(const Transition* t, const float* q, float* s) { return gyro_advance_f(t, q, s); }
-  static int batch(const Transition* t, float* s, std::size_t n, const float* q, std::size_t stride, std::uint8_t* st) {
-    return gyro_advance_batch_f(t, s, n, q, stride, st);
-  }
-};
+using c_api_test::C;
 
 template <typename T>
 class CApiExactStep : public ::testing::Test {};

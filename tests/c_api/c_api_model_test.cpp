@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "c_api/c_api_scalar.hpp"
 #include "gyro/gyro.h"
 #include "gyro/gyro_model.hpp"
 #include "gyro/report_sample.hpp"
@@ -14,48 +15,7 @@
 namespace gyro {
 namespace {
 
-template <typename T>
-struct C;
-template <>
-struct C<double> {
-  using Model = gyro_model_d;
-  using Input = gyro_step_input_d;
-  static Model* init(void* s, std::size_t n) { return gyro_model_d_init(s, n); }
-  static std::size_t size() { return gyro_model_d_storage_size(); }
-  static int configure(Model* m, const gyro_model_config* c) { return gyro_model_d_configure(m, c, nullptr); }
-  static int uncage(Model* m, const double* r, const double* w) { return gyro_model_d_uncage(m, r, w, nullptr); }
-  static int slew(Model* m, const Input* in, const double* w) { return gyro_model_d_step_slew(m, in, w); }
-  static int torque(Model* m, const Input* in, const double* t) { return gyro_model_d_step_torque(m, in, t); }
-  static void gimbal(const Model* m, double* g) { gyro_model_d_gimbal(m, g); }
-  static void rate(const Model* m, double* g) { gyro_model_d_rate(m, g); }
-  static void isaf(const Model* m, double* g) { gyro_model_d_isaf_angle(m, g); }
-  static void nutation(const Model* m, double* g) { gyro_model_d_nutation_amplitude(m, g); }
-  static void applied(const Model* m, double* g) { gyro_model_d_applied_torque(m, g); }
-  static void roteg(const Model* m, double* r) { gyro_model_d_R_earth_to_gyro(m, r); }
-  static void attitude(const Model* m, double* q) { gyro_model_d_attitude(m, q); }
-  static double cone(const Model* m) { return gyro_model_d_cone(m); }
-  static std::uint32_t flags(const Model* m) { return gyro_model_d_flags(m); }
-};
-template <>
-struct C<float> {
-  using Model = gyro_model_f;
-  using Input = gyro_step_input_f;
-  static Model* init(void* s, std::size_t n) { return gyro_model_f_init(s, n); }
-  static std::size_t size() { return gyro_model_f_storage_size(); }
-  static int configure(Model* m, const gyro_model_config* c) { return gyro_model_f_configure(m, c, nullptr); }
-  static int uncage(Model* m, const float* r, const float* w) { return gyro_model_f_uncage(m, r, w, nullptr); }
-  static int slew(Model* m, const Input* in, const float* w) { return gyro_model_f_step_slew(m, in, w); }
-  static int torque(Model* m, const Input* in, const float* t) { return gyro_model_f_step_torque(m, in, t); }
-  static void gimbal(const Model* m, float* g) { gyro_model_f_gimbal(m, g); }
-  static void rate(const Model* m, float* g) { gyro_model_f_rate(m, g); }
-  static void isaf(const Model* m, float* g) { gyro_model_f_isaf_angle(m, g); }
-  static void nutation(const Model* m, float* g) { gyro_model_f_nutation_amplitude(m, g); }
-  static void applied(const Model* m, float* g) { gyro_model_f_applied_torque(m, g); }
-  static void roteg(const Model* m, float* r) { gyro_model_f_R_earth_to_gyro(m, r); }
-  static void attitude(const Model* m, float* q) { gyro_model_f_attitude(m, q); }
-  static float cone(const Model* m) { return gyro_model_f_cone(m); }
-  static std::uint32_t flags(const Model* m) { return gyro_model_f_flags(m); }
-};
+using c_api_test::C;
 
 template <typename T>
 class CApiModel : public ::testing::Test {};

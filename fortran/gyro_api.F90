@@ -96,10 +96,11 @@ module gyro_api
     procedure :: r_earth_to_gyro_d, r_earth_to_gyro_f
     generic :: r_earth_to_gyro => r_earth_to_gyro_d, r_earth_to_gyro_f
     procedure :: flags => model_flags
+    procedure, private :: require => model_require
   end type
 
   interface gyro_nearest_rotation
-    procedure nearest_rotation_d, nearest_rotation_f
+    module procedure nearest_rotation_d, nearest_rotation_f
   end interface
   interface gyro_angular_momentum
     procedure angular_momentum_d, angular_momentum_f
@@ -197,32 +198,6 @@ module gyro_api
       type(refusal_c), intent(out) :: refusal
       integer(c_int) :: c_model_configure_f
     end function
-    function c_model_uncage_d(m, r, rate, offset) bind(c, name='gyro_model_d_uncage')
-      import :: c_ptr, c_int, c_double
-      type(c_ptr), value :: m
-      real(c_double), intent(in) :: r(9), rate(2), offset(2)
-      integer(c_int) :: c_model_uncage_d
-    end function
-    function c_model_uncage_f(m, r, rate, offset) bind(c, name='gyro_model_f_uncage')
-      import :: c_ptr, c_int, c_float
-      type(c_ptr), value :: m
-      real(c_float), intent(in) :: r(9), rate(2), offset(2)
-      integer(c_int) :: c_model_uncage_f
-    end function
-    function c_model_step_slew_d(m, in, slew) bind(c, name='gyro_model_d_step_slew')
-      import :: c_ptr, c_int, c_double, step_input_d
-      type(c_ptr), value :: m
-      type(step_input_d), intent(in) :: in
-      real(c_double), intent(in) :: slew(2)
-      integer(c_int) :: c_model_step_slew_d
-    end function
-    function c_model_step_slew_f(m, in, slew) bind(c, name='gyro_model_f_step_slew')
-      import :: c_ptr, c_int, c_float, step_input_f
-      type(c_ptr), value :: m
-      type(step_input_f), intent(in) :: in
-      real(c_float), intent(in) :: slew(2)
-      integer(c_int) :: c_model_step_slew_f
-    end function
     function c_model_flags_d(m) bind(c, name='gyro_model_d_flags')
       import :: c_ptr, c_int32_t
       type(c_ptr), value :: m
@@ -232,18 +207,6 @@ module gyro_api
       import :: c_ptr, c_int32_t
       type(c_ptr), value :: m
       integer(c_int32_t) :: c_model_flags_f
-    end function
-    function c_nearest_rotation_d(r, out) bind(c, name='gyro_nearest_rotation_d')
-      import :: c_int, c_double
-      real(c_double), intent(in) :: r(9)
-      real(c_double), intent(out) :: out(9)
-      integer(c_int) :: c_nearest_rotation_d
-    end function
-    function c_nearest_rotation_f(r, out) bind(c, name='gyro_nearest_rotation_f')
-      import :: c_int, c_float
-      real(c_float), intent(in) :: r(9)
-      real(c_float), intent(out) :: out(9)
-      integer(c_int) :: c_nearest_rotation_f
     end function
     function angular_momentum_d(spin_hz, spin_inertia) bind(c, name='gyro_angular_momentum_d')
       import :: c_double
@@ -384,6 +347,7 @@ contains
     class(gyro_model), intent(inout) :: self
     integer, intent(in) :: real_kind
     integer(c_int) :: status
+    if (gyro_abi_version() /= GYRO_ABI_WRITTEN_FOR) error stop 'gyro_api: libgyro has another ABI than this module'
     call self%destroy()
     self%real_kind = real_kind
     if (real_kind == c_double) then
@@ -432,161 +396,6 @@ contains
     end do
   end function
 
-  ! R_earth_to_body(i, j) and the body's (pitch, yaw) rates; offset (pitch, yaw) optional.
-  function uncage_d(self, r, body_rate, offset) result(status)
-    class(gyro_model), intent(inout) :: self
-    real(c_double), intent(in) :: r(3, 3), body_rate(2)
-    real(c_double), intent(in), optional :: offset(2)
-    integer(c_int) :: status
-    real(c_double) :: off(2)
-    off = 0
-    if (present(offset)) off = offset
-    if (self%real_kind /= c_double) error stop 'gyro_model%uncage: real(c_double) arguments for a c_float model'
-    status = c_model_uncage_d(self%handle, reshape(transpose(r), [9]), body_rate, off)
-  end function
-
-  function uncage_f(self, r, body_rate, offset) result(status)
-    class(gyro_model), intent(inout) :: self
-    real(c_float), intent(in) :: r(3, 3), body_rate(2)
-    real(c_float), intent(in), optional :: offset(2)
-    integer(c_int) :: status
-    real(c_float) :: off(2)
-    off = 0
-    if (present(offset)) off = offset
-    if (self%real_kind /= c_float) error stop 'gyro_model%uncage: real(c_float) arguments for a c_double model'
-    status = c_model_uncage_f(self%handle, reshape(transpose(r), [9]), body_rate, off)
-  end function
-
-  ! One step with the report's command; body_accel (lateral, normal) optional.
-  function step_slew_d(self, dt, r, slew, spin_hz, body_accel) result(status)
-    class(gyro_model), intent(inout) :: self
-    real(c_double), intent(in) :: dt, r(3, 3), slew(2), spin_hz
-    real(c_double), intent(in), optional :: body_accel(2)
-    integer(c_int) :: status
-    type(step_input_d) :: in
-    if (self%real_kind /= c_double) error stop 'gyro_model%step_slew: real(c_double) arguments for a c_float model'
-    in = step_input_d(dt, reshape(transpose(r), [9]), 0, spin_hz, 0)
-    if (present(body_accel)) in%body_accel = body_accel
-    status = c_model_step_slew_d(self%handle, in, slew)
-  end function
-
-  function step_slew_f(self, dt, r, slew, spin_hz, body_accel) result(status)
-    class(gyro_model), intent(inout) :: self
-    real(c_float), intent(in) :: dt, r(3, 3), slew(2), spin_hz
-    real(c_float), intent(in), optional :: body_accel(2)
-    integer(c_int) :: status
-    type(step_input_f) :: in
-    if (self%real_kind /= c_float) error stop 'gyro_model%step_slew: real(c_float) arguments for a c_double model'
-    in = step_input_f(dt, reshape(transpose(r), [9]), 0, spin_hz, 0)
-    if (present(body_accel)) in%body_accel = body_accel
-    status = c_model_step_slew_f(self%handle, in, slew)
-  end function
-
-  ! The readings after the last step: (pitch, yaw) gimbal angles, (theta', psi') rates, the
-  ! step's ISAF angles, R_earth_to_gyro(i, j) (the report's ROTEG).
-  subroutine gimbal_d(self, v)
-    class(gyro_model), intent(in) :: self
-    real(c_double), intent(out) :: v(2)
-    interface
-      subroutine c_pair(m, v) bind(c, name='gyro_model_d_gimbal')
-        import :: c_ptr, c_double
-        type(c_ptr), value :: m
-        real(c_double), intent(out) :: v(2)
-      end subroutine
-    end interface
-    call c_pair(self%handle, v)
-  end subroutine
-  subroutine gimbal_f(self, v)
-    class(gyro_model), intent(in) :: self
-    real(c_float), intent(out) :: v(2)
-    interface
-      subroutine c_pair(m, v) bind(c, name='gyro_model_f_gimbal')
-        import :: c_ptr, c_float
-        type(c_ptr), value :: m
-        real(c_float), intent(out) :: v(2)
-      end subroutine
-    end interface
-    call c_pair(self%handle, v)
-  end subroutine
-  subroutine rate_d(self, v)
-    class(gyro_model), intent(in) :: self
-    real(c_double), intent(out) :: v(2)
-    interface
-      subroutine c_pair(m, v) bind(c, name='gyro_model_d_rate')
-        import :: c_ptr, c_double
-        type(c_ptr), value :: m
-        real(c_double), intent(out) :: v(2)
-      end subroutine
-    end interface
-    call c_pair(self%handle, v)
-  end subroutine
-  subroutine rate_f(self, v)
-    class(gyro_model), intent(in) :: self
-    real(c_float), intent(out) :: v(2)
-    interface
-      subroutine c_pair(m, v) bind(c, name='gyro_model_f_rate')
-        import :: c_ptr, c_float
-        type(c_ptr), value :: m
-        real(c_float), intent(out) :: v(2)
-      end subroutine
-    end interface
-    call c_pair(self%handle, v)
-  end subroutine
-  subroutine isaf_angle_d(self, v)
-    class(gyro_model), intent(in) :: self
-    real(c_double), intent(out) :: v(2)
-    interface
-      subroutine c_pair(m, v) bind(c, name='gyro_model_d_isaf_angle')
-        import :: c_ptr, c_double
-        type(c_ptr), value :: m
-        real(c_double), intent(out) :: v(2)
-      end subroutine
-    end interface
-    call c_pair(self%handle, v)
-  end subroutine
-  subroutine isaf_angle_f(self, v)
-    class(gyro_model), intent(in) :: self
-    real(c_float), intent(out) :: v(2)
-    interface
-      subroutine c_pair(m, v) bind(c, name='gyro_model_f_isaf_angle')
-        import :: c_ptr, c_float
-        type(c_ptr), value :: m
-        real(c_float), intent(out) :: v(2)
-      end subroutine
-    end interface
-    call c_pair(self%handle, v)
-  end subroutine
-
-  subroutine r_earth_to_gyro_d(self, r)
-    class(gyro_model), intent(in) :: self
-    real(c_double), intent(out) :: r(3, 3)
-    interface
-      subroutine c_r(m, r) bind(c, name='gyro_model_d_R_earth_to_gyro')
-        import :: c_ptr, c_double
-        type(c_ptr), value :: m
-        real(c_double), intent(out) :: r(9)
-      end subroutine
-    end interface
-    real(c_double) :: rows(9)
-    call c_r(self%handle, rows)
-    r = transpose(reshape(rows, [3, 3]))
-  end subroutine
-
-  subroutine r_earth_to_gyro_f(self, r)
-    class(gyro_model), intent(in) :: self
-    real(c_float), intent(out) :: r(3, 3)
-    interface
-      subroutine c_r(m, r) bind(c, name='gyro_model_f_R_earth_to_gyro')
-        import :: c_ptr, c_float
-        type(c_ptr), value :: m
-        real(c_float), intent(out) :: r(9)
-      end subroutine
-    end interface
-    real(c_float) :: rows(9)
-    call c_r(self%handle, rows)
-    r = transpose(reshape(rows, [3, 3]))
-  end subroutine
-
   ! GYRO_FLAG_GIMBAL_LIMIT, GYRO_FLAG_SMALL_ANGLE.
   function model_flags(self) result(flags)
     class(gyro_model), intent(in) :: self
@@ -599,25 +408,6 @@ contains
   end function
 
   ! ------------------------------------------------------------------------------------------
-  ! The rotation nearest to R(i, j), a direction-cosine matrix that has drifted (gyro.h).
-  function nearest_rotation_d(r, out) result(status)
-    real(c_double), intent(in) :: r(3, 3)
-    real(c_double), intent(out) :: out(3, 3)
-    integer(c_int) :: status
-    real(c_double) :: rows(9)
-    status = c_nearest_rotation_d(reshape(transpose(r), [9]), rows)
-    if (status == GYRO_OK) out = transpose(reshape(rows, [3, 3]))
-  end function
-
-  function nearest_rotation_f(r, out) result(status)
-    real(c_float), intent(in) :: r(3, 3)
-    real(c_float), intent(out) :: out(3, 3)
-    integer(c_int) :: status
-    real(c_float) :: rows(9)
-    status = c_nearest_rotation_f(reshape(transpose(r), [9]), rows)
-    if (status == GYRO_OK) out = transpose(reshape(rows, [3, 3]))
-  end function
-
   ! A body turning by `angle` about its own y (axis 2) or z (axis 3): R_new = R_axis R_old.
   function gyro_frame_rotation(axis, angle, r) result(status)
     integer, intent(in) :: axis
@@ -637,5 +427,28 @@ contains
     call config%init(GYRO_MODEL_CONFIG)
     status = c_report_sample_get(sample, c_loc(config%storage))
   end function
+
+  ! Checks the arguments' kind against the model's.
+  subroutine model_require(self, real_kind)
+    class(gyro_model), intent(in) :: self
+    integer, intent(in) :: real_kind
+    if (self%real_kind /= real_kind) error stop 'gyro_model: arguments of another REAL kind than the model'
+  end subroutine
+
+#define CN(x) 'gyro_model_'//SUFFIX//'_'//x
+#define STEP_INPUT step_input_d
+#define WP c_double
+#define K(x) x/**/_d
+#define SUFFIX 'd'
+#include "gyro_api_kind.inc"
+#undef STEP_INPUT
+#undef WP
+#undef K
+#undef SUFFIX
+#define STEP_INPUT step_input_f
+#define WP c_float
+#define K(x) x/**/_f
+#define SUFFIX 'f'
+#include "gyro_api_kind.inc"
 
 end module gyro_api

@@ -22,14 +22,12 @@ namespace {
 
 using gyro::sil::SilColumn;
 
-void copy_text(char* to, std::size_t n, const std::string& from) {
-  std::snprintf(to, n, "%s", from.c_str());
-}
-
-int refuse(gyro_sil_error* error, int status, const std::string& message, const std::string& field = "") noexcept {
+// The status, with its message and field copied into the caller's buffers (cut to fit). No
+// allocation: it also reports running out of memory.
+int refuse(gyro_sil_error* error, int status, const char* message, const char* field = "") noexcept {
   if (error != nullptr) {
-    copy_text(error->message, sizeof error->message, message);
-    copy_text(error->field, sizeof error->field, field);
+    std::snprintf(error->message, sizeof error->message, "%s", message);
+    std::snprintf(error->field, sizeof error->field, "%s", field);
   }
   return status;
 }
@@ -46,9 +44,9 @@ int run(const std::optional<std::string>& path, const char* text, const gyro_sil
       if (options->precision != nullptr) {
         precision = gyro::sil::parse_precision(options->precision);
         if (!precision) {
-          return refuse(error, GYRO_OUT_OF_RANGE,
-                        std::string("precision: expected \"float\" or \"double\", got \"") + options->precision + "\"",
-                        "precision");
+          const std::string why =
+              std::string("precision: expected \"float\" or \"double\", got \"") + options->precision + "\"";
+          return refuse(error, GYRO_OUT_OF_RANGE, why.c_str(), "precision");
         }
       }
       if (options->ticks != 0) ticks = options->ticks;
@@ -57,7 +55,7 @@ int run(const std::optional<std::string>& path, const char* text, const gyro_sil
     const std::string name = path ? *path : std::string("<text>");
     const gyro::sil::Scenario s = gyro::sil::prepare_scenario(path, text != nullptr ? text : "", name, precision, ticks);
     const std::string too_large = gyro::sil::output_bound_refusal(s, max_bytes, "max_output_bytes");
-    if (!too_large.empty()) return refuse(error, GYRO_RUN_ERROR, too_large, "max_output_bytes");
+    if (!too_large.empty()) return refuse(error, GYRO_RUN_ERROR, too_large.c_str(), "max_output_bytes");
     auto* r = new gyro_sil_result;
     gyro::sil::RunOptions run_options;
     run_options.progress = false;
@@ -70,7 +68,7 @@ int run(const std::optional<std::string>& path, const char* text, const gyro_sil
     *result = r;
     return refuse(error, GYRO_OK, "");
   } catch (const gyro::sil::ScenarioError& e) {
-    return refuse(error, GYRO_SCENARIO_ERROR, e.what(), e.field());
+    return refuse(error, GYRO_SCENARIO_ERROR, e.what(), e.field().c_str());
   } catch (const gyro::sil::RunError& e) {
     return refuse(error, GYRO_RUN_ERROR, e.what());
   } catch (const std::bad_alloc&) {

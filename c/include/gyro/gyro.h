@@ -345,7 +345,8 @@ int gyro_report_sample_get(gyro_report_sample* out, gyro_model_config* config);
 int gyro_initg_step_d(const gyro_rotor_parameters_d* p, double* step_s);
 
 /* ---------------------------------------------------------------------------------------------
- * Host only (not in the bare-metal library): models on the heap, the gimbal plant, SIL runs. */
+ * The host part (a libgyro built for the machine it runs on; not in a cross-compiled one):
+ * models on the heap, the gimbal plant, SIL runs (where the build has its tools). */
 
 /* A model on the heap (for callers that cannot hold storage: an FFI, a MEX file). NULL when out
  * of memory. */

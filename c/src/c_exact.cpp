@@ -23,7 +23,7 @@ RotorParameters<T> params_of(const typename Types<T>::Params& p) noexcept {
 
 // The four 2x2 matrices column by column (Eigen's layout), then dt.
 template <typename T>
-void to_c(const RotorTransition<T>& tr, typename Types<T>::Transition& out) noexcept {
+void store_transition(const RotorTransition<T>& tr, typename Types<T>::Transition& out) noexcept {
   T* c = out.coefficients;
   std::memcpy(c, tr.rate_from_rate.data(), 4 * sizeof(T));
   std::memcpy(c + 4, tr.angle_from_rate.data(), 4 * sizeof(T));
@@ -33,7 +33,7 @@ void to_c(const RotorTransition<T>& tr, typename Types<T>::Transition& out) noex
 }
 // Inlined into the step (out of line it costs a call and a default-initialised copy).
 template <typename T>
-[[gnu::always_inline]] inline RotorTransition<T> from_c(const typename Types<T>::Transition& in) noexcept {
+[[gnu::always_inline]] inline RotorTransition<T> transition_of(const typename Types<T>::Transition& in) noexcept {
   RotorTransition<T> tr;
   const T* c = in.coefficients;
   std::memcpy(tr.rate_from_rate.data(), c, 4 * sizeof(T));
@@ -49,7 +49,7 @@ int make(const typename Types<T>::Params* p, T dt_s, typename Types<T>::Transiti
   if (p == nullptr || out == nullptr) return GYRO_NULL_ARGUMENT;
   RotorTransition<T> tr;
   const Status st = make_transition(params_of<T>(*p), dt_s, tr);
-  if (st == Status::kOk) to_c(tr, *out);
+  if (st == Status::kOk) store_transition(tr, *out);
   return static_cast<int>(st);
 }
 
@@ -71,7 +71,7 @@ void store(const RotorState<T>& r, T* s) noexcept {
 template <typename T>
 int advance_one(const typename Types<T>::Transition* c_tr, const T* torque, T* state) noexcept {
   if (c_tr == nullptr || torque == nullptr || state == nullptr) return GYRO_NULL_ARGUMENT;
-  const RotorTransition<T> tr = from_c<T>(*c_tr);
+  const RotorTransition<T> tr = transition_of<T>(*c_tr);
   RotorState<T> s = state_of(state);
   const Status st = advance(tr, Vector2<T>(torque[0], torque[1]), s);
   if (st == Status::kOk) store(s, state);
@@ -83,7 +83,7 @@ int advance_many(const typename Types<T>::Transition* c_tr, T* states, std::size
                  std::size_t torque_stride, std::uint8_t* statuses) noexcept {
   if (c_tr == nullptr || (n > 0 && (states == nullptr || torques == nullptr))) return GYRO_NULL_ARGUMENT;
   if (torque_stride != 0 && torque_stride != 2) return GYRO_OUT_OF_RANGE;
-  const RotorTransition<T> tr = from_c<T>(*c_tr);
+  const RotorTransition<T> tr = transition_of<T>(*c_tr);
   int first = GYRO_OK;
   for (std::size_t i = 0; i < n; ++i) {
     T* s = states + 4 * i;

@@ -33,6 +33,7 @@
 #include "printable.hpp"
 #include "scenario.hpp"
 #include "signal_cleanup.hpp"
+#include "sil_columns.hpp"  // kDefaultMaxOutputBytes
 #include "sil_runner.hpp"
 
 namespace {
@@ -44,7 +45,6 @@ constexpr int kExitRunFailed = 1;
 constexpr int kExitRefused = 2;
 constexpr int kExitPlotFailed = 3;
 
-constexpr std::uint64_t kDefaultMaxOutputBytes = std::uint64_t{1} << 30;  // 1 GiB
 
 int fail(int status, const std::string& message) {
   std::fprintf(stderr, "gyro_sil: %s\n", message.c_str());

@@ -11,7 +11,6 @@
 #include <limits>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "arrays.hpp"
@@ -20,6 +19,7 @@
 #include "errors.hpp"
 #include "scenario.hpp"
 #include "scenario_source.hpp"
+#include "sil_columns.hpp"
 #include "sil_runner.hpp"
 
 namespace py = pybind11;
@@ -28,70 +28,44 @@ namespace gyro::python {
 
 namespace {
 
-using sil::CellValue;
-
-// run_sil's default output bound: gyro_sil's --max-output-bytes default (apps/main.cpp), 1 GiB.
-constexpr std::uint64_t kDefaultMaxOutputBytes = std::uint64_t{1} << 30;
 // The most ticks run_sil takes (the output bound refuses far fewer at its default).
 constexpr std::uint64_t kMaxTicks = std::uint64_t{1} << 53;
 
-// Every standard column, kept by kind. The run goes on with the GIL released; every
-// kSignalCheckPeriod of wall time a tick takes the GIL back to run Python's signal handlers
-// (PyErr_CheckSignals), so Ctrl-C stops the run within that period plus one tick: the handler's
-// exception (KeyboardInterrupt) is left set and Interrupted thrown out of the loop.
-class ColumnRecorder final : public sil::TickObserver {
+// Every standard column (sil::ColumnRecorder), as NumPy arrays. The run goes on with the GIL
+// released; every kSignalCheckPeriod of wall time a tick takes the GIL back to run Python's
+// signal handlers (PyErr_CheckSignals), so Ctrl-C stops the run within that period plus one
+// tick: the handler's exception (KeyboardInterrupt) is left set and Interrupted thrown out of
+// the loop.
+class ColumnRecorder final : public sil::ColumnRecorder {
  public:
-  ColumnRecorder() : row_(sil::csv_columns().size()), columns_(row_.size()) {}
   void on_tick(const sil::TickRecord& r) override {
     const auto now = std::chrono::steady_clock::now();
     if (now - last_check_ >= kSignalCheckPeriod) {
       last_check_ = now;
       if (python_signal_raised()) throw Interrupted{};
     }
-    sil::row_cells(r, row_);
-    for (std::size_t i = 0; i < row_.size(); ++i) {
-      Column& c = columns_[i];
-      std::visit(
-          [&](const auto& v) {
-            using V = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<V, double>) {
-              c.numbers.push_back(v);
-            } else if constexpr (std::is_same_v<V, std::uint64_t>) {
-              c.integers.push_back(v);
-            } else {
-              c.names.emplace_back(v);
-            }
-          },
-          row_[i]);
-    }
+    sil::ColumnRecorder::on_tick(r);
   }
   // name -> array (float64, uint64, or str).
   [[nodiscard]] py::dict arrays() const {
     const py::module_ np = py::module_::import("numpy");
     py::dict d;
-    const auto names = sil::csv_columns();
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      const Column& c = columns_[i];
-      const py::str key(std::string(names[i]));
-      if (!c.integers.empty()) {
-        d[key] = py::array_t<std::uint64_t>(static_cast<py::ssize_t>(c.integers.size()), c.integers.data());
-      } else if (!c.names.empty()) {
-        d[key] = np.attr("array")(py::cast(c.names));
-      } else {
-        d[key] = py::array_t<double>(static_cast<py::ssize_t>(c.numbers.size()), c.numbers.data());
+    for (const sil::SilColumn& c : columns()) {
+      const py::str key(std::string(c.name));
+      switch (c.kind) {
+        case sil::SilColumn::Kind::kIntegers:
+          d[key] = py::array_t<std::uint64_t>(static_cast<py::ssize_t>(c.integers.size()), c.integers.data());
+          break;
+        case sil::SilColumn::Kind::kNames: d[key] = np.attr("array")(py::cast(c.names)); break;
+        case sil::SilColumn::Kind::kNumbers:
+          d[key] = py::array_t<double>(static_cast<py::ssize_t>(c.numbers.size()), c.numbers.data());
+          break;
       }
     }
     return d;
   }
 
  private:
-  struct Column {
-    std::vector<double> numbers;
-    std::vector<std::uint64_t> integers;
-    std::vector<std::string> names;
-  };
-  std::vector<CellValue> row_;
-  std::vector<Column> columns_;
   std::chrono::steady_clock::time_point last_check_{std::chrono::steady_clock::now()};
 };
 
@@ -136,25 +110,9 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
   ColumnRecorder recorder;
   sil::RunSummary sum;
   try {
-    sil::Scenario s;
-    if (src.path) {
-      s = sil::load_scenario(*src.path, p);
-    } else {
-      s = sil::parse_scenario(src.text, src.name);
-      if (p) s.run.precision = *p;
-      sil::check_configs(s);
-    }
-    if (ticks) s.run.ticks = *ticks;
-    // gyro_sil's bound of its CSV, checked before the run as gyro_sil checks it: the arrays
-    // returned take less (8 bytes a number against the CSV's 16 or more characters).
-    const std::uint64_t bound = sil::csv_size_bound(s);
-    if (bound > max_output_bytes) {
-      throw py::value_error("max_output_bytes: the run's output could take up to " + std::to_string(bound) +
-                            " bytes (" + std::to_string(s.run.ticks + 1) + " rows of " +
-                            std::to_string(sil::csv_row_bytes_bound(s.run.ticks)) + " bytes), more than the limit of " +
-                            std::to_string(max_output_bytes) +
-                            " (raise it with max_output_bytes=..., or run fewer ticks)");
-    }
+    const sil::Scenario s = sil::prepare_scenario(src.path, src.text, src.name, p, ticks);
+    const std::string too_large = sil::output_bound_refusal(s, max_output_bytes, "max_output_bytes");
+    if (!too_large.empty()) throw py::value_error(too_large);
     sil::RunOptions options;
     options.progress = false;
     py::gil_scoped_release release;
@@ -173,9 +131,9 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
 
 void bind_sil_run(py::module_& m) {
   m.def("_run_sil", &run_sil, py::arg("scenario"), py::arg("precision") = py::none(), py::arg("ticks") = py::none(),
-        py::arg("max_output_bytes") = kDefaultMaxOutputBytes,
+        py::arg("max_output_bytes") = sil::kDefaultMaxOutputBytes,
         "(columns, telemetry) of a SIL run; gyro.run_sil wraps it in a SilRun.");
-  m.attr("DEFAULT_MAX_OUTPUT_BYTES") = kDefaultMaxOutputBytes;
+  m.attr("DEFAULT_MAX_OUTPUT_BYTES") = sil::kDefaultMaxOutputBytes;
   m.def(
       "sil_columns",
       [] {

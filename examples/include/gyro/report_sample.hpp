@@ -10,6 +10,18 @@
 
 namespace gyro {
 
+// INITG's step for any rotor: 1/floor(20 x nutation Hz), so that 20 steps or more resolve a
+// nutation cycle; 0 when the rotor does not nutate at 0.05 Hz or more (the listing divides by
+// zero there, or takes the root of a negative number when overdamped: docs/seed-errata.md, 7
+// and 17).
+template <typename T>
+[[nodiscard]] T initg_step(const RotorParameters<T>& rotor) noexcept {
+  RotorModes<T> m;
+  if (compute_modes(rotor, m) != Status::kOk) return T(0);
+  const T per_second = std::floor(T(20) * m.nutation_hz);
+  return per_second >= T(1) ? T(1) / per_second : T(0);
+}
+
 template <typename T>
 struct ReportSample {
   static constexpr T kDegPerSecond = T(0.1745329);  // the listing's 10 deg/s
@@ -36,11 +48,7 @@ struct ReportSample {
   static Vector2<T> slew_command() noexcept { return Vector2<T>(T(-0.19), T(0.013)); }
 
   // INITG's step: 1/floor(20 x nutation Hz).
-  static T initg_step() noexcept {
-    RotorModes<T> m;
-    if (compute_modes(rotor(), m) != Status::kOk) return T(0);
-    return T(1) / std::floor(T(20) * m.nutation_hz);
-  }
+  static T initg_step() noexcept { return gyro::initg_step(rotor()); }
 };
 
 struct SampleRunSummary {

@@ -70,7 +70,8 @@ ban nodiscard-status '^[[:space:]]*((static|virtual|inline|constexpr|friend)[[:s
 echo "== configure $build_dir (compile_commands.json)"
 mkdir -p "$build_dir"
 cmake -S . -B "$build_dir" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DGYRO_BUILD_TOOLS=OFF \
-  -DGYRO_BUILD_TESTS=ON -DCMAKE_BUILD_TYPE=Debug > "$build_dir/configure.log" 2>&1 || {
+  -DGYRO_BUILD_TESTS=ON -DGYRO_BUILD_FORTRAN=OFF -DGYRO_BUILD_OCTAVE=OFF -DCMAKE_BUILD_TYPE=Debug \
+  > "$build_dir/configure.log" 2>&1 || {
   cat "$build_dir/configure.log"
   exit 2
 }

@@ -31,13 +31,16 @@ failed=0
 fail() { echo "pil: FAILED: $*"; failed=1; }
 
 echo "== build: gyro_sil (host), gyro_fw_pil (cortex-m4f, cortex-m7)"
-[ -f build/host/CMakeCache.txt ] || cmake --preset host >/dev/null
-cmake --build build/host --target gyro_sil -j2 >/dev/null
+# The host build there is (CI's is the preset release), else the preset host.
+host=build/host
+[ -f "$host/CMakeCache.txt" ] || [ ! -f build/release/CMakeCache.txt ] || host=build/release
+[ -f "$host/CMakeCache.txt" ] || cmake --preset host >/dev/null
+cmake --build "$host" --target gyro_sil -j2 >/dev/null
 for preset in cortex-m4f cortex-m7; do
   [ -f "build/$preset/CMakeCache.txt" ] || cmake --preset "$preset" >/dev/null
   cmake --build "build/$preset" --target gyro_fw_pil -j2 >/dev/null
 done
-sil=build/host/apps/gyro_sil
+sil=$host/apps/gyro_sil
 scenario=scenarios/seeker_slew.json
 
 # pil_run <name> <preset> <machine> <precision> <ticks> [gyro_sil options...]: a PIL run to

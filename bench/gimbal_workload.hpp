@@ -4,9 +4,9 @@
 // gravity plus a lateral load, and the torques slew the gimbals back and forth inside the
 // stop (no contact), as a SIL run would.
 //
-// The report's gyro as a device (slug ft^2): rotor J0 = 3, A = 1.6 (J0 <= 2A); inner gimbal
-// (0.45, 0.65, 0.2), outer (0.4, 0.2, 0.2), so that the effective inertias at zero angles are
-// the report's J1 = Iy + A = 2.25 and J2 = Oz + Iz + A = 2.0; friction 5 on each bearing.
+// The report's gyro as a device (slug ft^2), from ReportSample's configuration: its J0, A = 1.6
+// (J0 <= 2A), gimbal inertias split so that the effective inertias at zero angles are the
+// report's J1 = Iy + A and J2 = Oz + Iz + A; its friction on each bearing.
 #pragma once
 
 #include <string>
@@ -20,18 +20,20 @@ namespace gyro::bench {
 
 template <typename T>
 GimbalPlantConfig<T> report_sample_gimbal_config() {
+  const GyroModelConfig<T> r = ReportSample<T>::config();
+  const T a = T(1.6);  // the rotor's transverse inertia A: J0 <= 2A
   GimbalPlantConfig<T> c;
-  c.spin_inertia = T(3.0);
-  c.rotor_transverse_inertia = T(1.6);
-  c.inner_gimbal_inertia = Vector3<T>(T(0.45), T(0.65), T(0.2));
-  c.outer_gimbal_inertia = Vector3<T>(T(0.4), T(0.2), T(0.2));
-  c.inner_friction = T(5.0);
-  c.outer_friction = T(5.0);
+  c.spin_inertia = r.spin_inertia;
+  c.rotor_transverse_inertia = a;
+  c.inner_gimbal_inertia = Vector3<T>(T(0.45), r.pitch_inertia - a, T(0.2));         // J1 = Iy + A
+  c.outer_gimbal_inertia = Vector3<T>(T(0.4), T(0.2), r.yaw_inertia - T(0.2) - a);  // J2 = Oz + Iz + A
+  c.inner_friction = r.friction;
+  c.outer_friction = r.friction;
   c.spin_drive = SpinDrive::kMotor;
   c.max_spin_hz = ReportSample<T>::kSpinHz;
   c.motor_torque_limit = T(50.0);
   c.spin_servo_bandwidth_rad_s = T(5.0);
-  c.stop_cone_rad = T(0.4363323);  // the sample's gimbal cone limit, 25 deg
+  c.stop_cone_rad = r.gimbal_cone_limit_rad;  // 25 deg
   c.stop_restitution = T(0.2);
   c.max_body_rate_rad_s = T(10.0);
   c.max_torque = T(1e4);

@@ -43,7 +43,8 @@ struct ReportSample {
     return c;
   }
   static RotorParameters<T> rotor() noexcept {
-    return {T(2.25), T(2.0), T(5.0), angular_momentum(kSpinHz, T(3.0))};
+    const GyroModelConfig<T> c = config();
+    return {c.pitch_inertia, c.yaw_inertia, c.friction, angular_momentum(kSpinHz, c.spin_inertia)};
   }
   static Vector2<T> slew_command() noexcept { return Vector2<T>(T(-0.19), T(0.013)); }
 

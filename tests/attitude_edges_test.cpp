@@ -37,7 +37,7 @@ TEST(StepRotation, GivenAnglesAcrossTheSeriesEdgeAndBeyondThenItIsTheRotationOfT
       // w = cos(h) to a few ulps of 1 (near h = pi/2 the rounding of h itself shows);
       // the axis part sin(h)/(2h) (th, ps) to a few ulps of itself, however small.
       const auto near = [eps](double got, long double want) {
-        return std::abs(static_cast<long double>(got) - want) <= 4 * eps * std::abs(want);
+        return std::abs(static_cast<long double>(got) - want) <= static_cast<long double>(4 * eps) * std::abs(want);
       };
       EXPECT_LE(std::abs(static_cast<long double>(q.w()) - r.w()), 4 * eps) << q.w() - static_cast<double>(r.w());
       EXPECT_EQ(q.x(), 0.0);

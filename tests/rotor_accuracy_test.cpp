@@ -605,7 +605,7 @@ TEST(RotorAccuracyReference, GivenStiffAndOscillatoryCasesThenReferenceIsASemigr
         worst = std::max(worst, to_double(qabs(sq - full.phi[i][j]) / std::max(Quad(1), qabs(full.phi[i][j]))));
       }
     }
-    EXPECT_LE(worst, to_double(1e6 * quad_epsilon()));
+    EXPECT_LE(worst, to_double(Quad(1e6) * quad_epsilon()));
   }
 }
 

@@ -389,14 +389,15 @@ TYPED_TEST_SUITE(NutationAmplitudeOf, Scalars);
 template <typename T>
 Vector2<double> report_amplitude(const RotorParameters<T>& prm, const Vector2<T>& w, const Vector2<T>& torque) {
   using L = long double;
-  const L j1 = prm.pitch_inertia, j2 = prm.yaw_inertia, f = prm.friction, h = prm.angular_momentum;
-  const L t1 = torque(0), t2 = torque(1);
+  const L j1 = static_cast<L>(prm.pitch_inertia), j2 = static_cast<L>(prm.yaw_inertia);
+  const L f = static_cast<L>(prm.friction), h = static_cast<L>(prm.angular_momentum);
+  const L t1 = static_cast<L>(torque(0)), t2 = static_cast<L>(torque(1));
   const L k5 = (f * t1 - h * t2) / (f * f + h * h);
   const L k6 = (h * t1 + f * t2) / (f * f + h * h);
   const L alpha = f / 2 * (1 / j1 + 1 / j2);
   const L beta = std::sqrt((f * f + h * h) / (j1 * j2) - alpha * alpha);
-  const L k2 = w(0) - k5;
-  const L k4 = w(1) - k6;
+  const L k2 = static_cast<L>(w(0)) - k5;
+  const L k4 = static_cast<L>(w(1)) - k6;
   const L k1 = ((alpha * j1 - f) * k2 - h * k4) / (beta * j1);
   const L k3 = ((alpha * j1 - f) * k1 + beta * j1 * k2) / h;
   const L den = alpha * alpha + beta * beta;

@@ -1,5 +1,5 @@
 // gyro_sil: runs the flight gyro component against the simulated gyro, as a scenario file
-// describes, and writes the time history as CSV (and a plot of the gimbal angles).
+// describes, and writes the time history as CSV (and a plot that explains the run: run_plot.hpp).
 //
 //   gyro_sil SCENARIO.json [-o out.csv] [--plot out.png] [--precision float|double] [--ticks N]
 //            [--quiet] [--max-output-bytes N] [--plot-timeout S]
@@ -20,7 +20,6 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,6 +28,8 @@
 #include "sil_option_values.hpp"
 #include "output_files.hpp"
 #include "plot.hpp"
+#include "run_plot.hpp"
+#include "run_timeline.hpp"
 #include "printable.hpp"
 #include "scenario.hpp"
 #include "signal_cleanup.hpp"
@@ -48,36 +49,6 @@ constexpr std::uint64_t kDefaultMaxOutputBytes = std::uint64_t{1} << 30;  // 1 G
 int fail(int status, const std::string& message) {
   std::fprintf(stderr, "gyro_sil: %s\n", message.c_str());
   return status;
-}
-
-PlotRequest gimbal_plot(const fs::path& csv, const fs::path& png, const Scenario& s) {
-  PlotRequest r;
-  r.csv = csv;
-  r.png = png;
-  r.title = fs::path(s.file).filename().string() + " (" + to_string(s.run.precision) + ")";
-  // The description, wrapped at word boundaries.
-  std::string line;
-  std::istringstream words(s.description);
-  for (std::string w; words >> w;) {
-    if (!line.empty() && line.size() + 1 + w.size() > 110) {
-      r.title += "\n" + line;
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + w;
-  }
-  if (!line.empty()) r.title += "\n" + line;
-  r.time_column = csv_column("t");
-  const char* true_style = "lw 3 lc rgb '#9a9a9a'";
-  const char* meas_style = "lc rgb '#d62728'";
-  const char* pred_style = "lw 1 dt 2 lc rgb '#1f4e9c'";
-  for (const char* axis : {"pitch", "yaw"}) {
-    const std::string a(axis);
-    r.panels.push_back({"gimbal " + a + " (rad)",
-                        {{csv_column("gimbal_" + a), "true", false, true_style},
-                         {csv_column("gimbal_" + a + "_meas"), "measured (accepted)", true, meas_style},
-                         {csv_column("gimbal_" + a + "_pred"), "predicted", false, pred_style}}});
-  }
-  return r;
 }
 
 // Where the CSV goes while the run writes it: a temporary file beside the final one, a
@@ -164,7 +135,7 @@ int main(int argc, char** argv) {
   app.add_option("scenario", scenario_path, "scenario file (JSON, see docs/scenarios.md)")->required();
   app.add_option("-o,--output", csv_path, "CSV time history to write ('-' = standard output)")
       ->capture_default_str();
-  app.add_option("--plot", plot_path, "also plot the gimbal angles against time to this PNG (needs gnuplot)");
+  app.add_option("--plot", plot_path, "also plot the run to this PNG: gimbal, rates, torque, residual against their limits, modes and flags (needs gnuplot)");
   app.add_option("--precision", precision_name, "run the component and the stub in float or double "
                                                 "(default: the scenario's run.precision)")
       ->check(CLI::IsMember({"float", "double"}));
@@ -299,9 +270,12 @@ int main(int argc, char** argv) {
     options.max_csv_bytes = max_output_bytes;
     if (!pil.socket.empty()) options.pil = pil;
     CsvWriter csv(csv_out.out());
+    CsvObserver rows(csv, max_output_bytes);
+    TimelineObserver timeline(scenario.run.tick_s, timeline_resolution_s(scenario));
+    FanOutObserver observers({&rows, &timeline});
     RunSummary sum;
     try {
-      sum = run_scenario(scenario, csv, options);
+      sum = run_scenario(scenario, observers, options);
     } catch (const ScenarioError& e) {
       return fail(kExitRefused, std::string("bad scenario: ") + e.what());
     } catch (const RunError& e) {
@@ -317,7 +291,8 @@ int main(int argc, char** argv) {
     std::string plot_failure;
     if (plotting) {
       try {
-        PlotRequest request = gimbal_plot(csv_out.file->path(), png_out->path(), scenario);
+        PlotRequest request =
+            run_plot(csv_out.file->path(), png_out->path(), scenario_title(scenario), scenario, timeline.timeline());
         request.timeout_s = plot_timeout_s;
         plot_csv(request);
       } catch (const PlotError& e) {
@@ -334,7 +309,7 @@ int main(int argc, char** argv) {
                    "gyro_sil: %s: %llu ticks (%.6g s simulated, %s) in %.3f s; final mode %s; flags raised: %s%s%s\n",
                    shown.c_str(), static_cast<unsigned long long>(sum.ticks),
                    static_cast<double>(sum.ticks) * scenario.run.tick_s, to_string(sum.precision), sum.wall_s,
-                   gyro::enum_name(sum.final_mode), flags.empty() ? "none" : flags.c_str(),
+                   gyro::enum_name_or(sum.final_mode, "?"), flags.empty() ? "none" : flags.c_str(),
                    to_file ? "; wrote " : "", to_file ? printable(plan.csv.given).c_str() : "");
       if (sum.pil) print_pil_summary(*sum.pil);
       if (plotting && plot_failure.empty()) std::fprintf(stderr, "gyro_sil: plot: %s\n", printable(plot_path).c_str());

@@ -1,8 +1,10 @@
-// Plots of a gyro_sil CSV with gnuplot: the gimbal angles against time, one panel per axis,
-// the true angles as lines and the component's measured (and predicted) angles on top, as the
-// report's Figures show the nutation riding on the slow drift.
+// Plots of a gyro_sil CSV with gnuplot: panels stacked on one time axis (their plotting areas
+// aligned), each with series from the CSV, limit lines, or a raster of bars (modes, flags);
+// markers and shaded windows run through every panel. run_plot.hpp says what a run's plot
+// shows.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -11,9 +13,10 @@
 
 namespace gyro::sil {
 
-// How long gnuplot may take by default: it drew the 200,001 rows of a 103 MB CSV in about
-// 10.5 s on the 2-core development machine, so the largest CSV of the default output limit
-// (1 GiB, about 2 million rows) takes about 2 minutes.
+// How long gnuplot may take by default: a run's plot (run_plot.hpp: 17 curves, one row in 11)
+// of the 200,001 rows of a 103 MB CSV took about 4.7 s on the 2-core development machine, so
+// the largest CSV of the default output limit (1 GiB, about 2 million rows) takes about a
+// minute.
 inline constexpr double kDefaultPlotTimeoutS = 300.0;
 
 class PlotError : public std::runtime_error {
@@ -26,11 +29,52 @@ struct PlotSeries {
   std::string title;
   bool points{false};  // small points instead of a line
   std::string style;   // extra gnuplot style, e.g. "lw 3 lc rgb '#a0a0a0'"
+  bool magnitude{false};  // plot |value|
+};
+
+// A horizontal line across a panel: a limit (and its mirror at -value when `mirrored`).
+struct PlotLimit {
+  double value{0};
+  std::string title;
+  std::string style;  // e.g. "dt 2 lw 1.5 lc rgb '#d62728'"
+  bool mirrored{false};
+};
+
+// A bar of a raster row, from_s to to_s, in a colour ("#rrggbb"); `label` is written inside
+// it when it is wide enough.
+struct PlotBar {
+  double from_s{0}, to_s{0};
+  std::string color;
+  std::string label;
+};
+
+struct PlotRow {
+  std::string name;  // the row's tick label
+  std::vector<PlotBar> bars;
 };
 
 struct PlotPanel {
   std::string ylabel;
-  std::vector<PlotSeries> series;
+  std::vector<PlotSeries> series;  // from the CSV
+  std::vector<PlotLimit> limits;
+  std::vector<PlotRow> rows;       // a raster, top row first (instead of or beside series)
+  bool log_y{false};
+  int height_px{330};
+};
+
+// An instant marked by a vertical line through every panel, named at the top.
+struct PlotMarker {
+  double t_s{0};
+  std::string label;
+  std::string color;
+};
+
+// A stretch of time shaded in every panel, named at the top (unless the name is empty).
+struct PlotWindow {
+  double from_s{0}, to_s{0};
+  std::string label;
+  std::string color;        // the shade
+  std::string label_color;  // the name's (a pale shade's colour is hard to read as text)
 };
 
 struct PlotRequest {
@@ -38,7 +82,11 @@ struct PlotRequest {
   std::filesystem::path png;  // written by gnuplot (gyro_sil gives it a temporary file)
   std::string title;  // '\n' starts a new line
   int time_column{1};
-  std::vector<PlotPanel> panels;  // stacked top to bottom
+  std::vector<PlotPanel> panels;  // stacked top to bottom on one time axis
+  std::vector<PlotMarker> markers;
+  std::vector<PlotWindow> windows;
+  std::optional<double> end_s;  // the time axis runs from 0 to here (default: the data's range)
+  std::uint64_t every{1};       // plot every Nth row of the CSV (a long run's plot needs no more)
   double timeout_s{kDefaultPlotTimeoutS};  // gnuplot is killed after this long
 };
 

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <type_traits>
@@ -257,6 +258,33 @@ void read_fields(const Reader& r, Config& c, const char* section) {
       c);
 }
 
+// The fields of `c` in `section` as a scenario writes them, into the object `out`: what
+// read_fields reads back as `c` (every field, optional ones included).
+template <class Config>
+void write_fields(json& out, const Config& c, const char* section) {
+  visit_fields(
+      [&](const Field& f, const auto& value) {
+        if (f.presence == Presence::kImplied || !same_section(f.section, section)) return;
+        const std::string key(field_key(f));
+        using M = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<M, double> || std::is_same_v<M, bool> || std::is_same_v<M, std::uint32_t> ||
+                      std::is_same_v<M, std::uint64_t>) {
+          out[key] = value;
+        } else if constexpr (kHasEnumNames<M>) {
+          out[key] = enum_name(value);
+        } else if constexpr (kHasFieldTable<M>) {
+          json inner = json::object();
+          write_fields(inner, value, nullptr);
+          out[key] = inner;
+        } else if constexpr (std::is_base_of_v<Eigen::EigenBase<M>, M>) {
+          json a = json::array();
+          for (Eigen::Index i = 0; i < value.size(); ++i) a.push_back(value(i));
+          out[key] = a;
+        }
+      },
+      c);
+}
+
 // The names of the fault kinds a scenario can schedule, in enum order.
 std::string fault_kind_list() {
   std::string names;
@@ -439,6 +467,12 @@ void record_values(const json& j, const std::string& path, std::map<std::string,
 
 }  // namespace
 
+std::map<std::string, std::string> written_values(const Scenario& s) {
+  std::map<std::string, std::string> out;
+  if (s.document) record_values(*s.document, "", out);
+  return out;
+}
+
 ScenarioError::ScenarioError(std::string file, std::string field, std::string reason)
     : std::runtime_error(printable(file) + ": " + printable(field) + ": " + printable(reason)),
       file_(std::move(file)),
@@ -473,20 +507,93 @@ Scenario parse_scenario(std::string_view json_text, const std::string& file) {
   return parse_scenario_document(doc, file);
 }
 
+namespace {
+
+constexpr std::string_view kGyroKeys[] = {"plant",  "rotor",   "limits",  "gravity", "errors",
+                                          "gimbal", "pickoff", "torquer", "seed",    "faults"};
+
+// A section's run: the tick alone (its field named "tick_s").
+RunSpec section_run(double tick_s, const std::string& file) {
+  RunSpec run;
+  run.tick_field = "tick_s";
+  if (!(tick_s > 0) || !std::isfinite(tick_s)) {
+    throw ScenarioError(file, "tick_s", "must be > 0, got " + Reader::format(tick_s));
+  }
+  run.tick_s = tick_s;
+  return run;
+}
+
+}  // namespace
+
+nlohmann::json gyro_section(const SimulatedGyroConfig<double>& c, std::size_t fault_count) {
+  json g = json::object();
+  g["plant"] = c.plant == PlantKind::kGimbal ? "gimbal" : "report";
+  for (const char* section : {"rotor", "limits"}) {
+    json part = json::object();
+    write_fields(part, c.gyro, section);
+    write_fields(part, c, section);
+    g[section] = part;
+  }
+  write_fields(g, c.gyro, nullptr);  // gravity, errors
+  if (c.plant == PlantKind::kGimbal) {
+    g.erase("errors");  // the report plant's alone
+    json gimbal = json::object();
+    write_fields(gimbal, c.gimbal, nullptr);
+    g["gimbal"] = gimbal;
+    g["rotor"].erase("spin_down_time_constant_s");
+  }
+  write_fields(g, c, nullptr);  // pickoff, torquer, seed
+  if (fault_count > 0) {
+    json faults = json::array();
+    for (std::size_t i = 0; i < fault_count; ++i) {
+      const FaultEvent<double>& f = c.faults[i];
+      json e = {{"kind", fault_kind_name(f.kind)},
+                {"start_s", static_cast<double>(f.start_tick) * c.tick_s},
+                {"axis", f.axis}};
+      if (f.duration_ticks > 0) e["duration_s"] = static_cast<double>(f.duration_ticks) * c.tick_s;
+      if (fault_needs_magnitude(f.kind)) e["magnitude"] = f.magnitude;
+      faults.push_back(e);
+    }
+    g["faults"] = faults;
+  }
+  return g;
+}
+
+nlohmann::json component_section(const GyroComponentConfig<double>& c) {
+  json out = json::object();
+  write_fields(out, c, nullptr);
+  return out;
+}
+
+Scenario parse_gyro_section(const nlohmann::json& gyro, double tick_s, const std::string& file, const std::string& path) {
+  Scenario s;
+  s.file = file;
+  s.run = section_run(tick_s, file);
+  parse_gyro(Reader(s.file, gyro, path, kGyroKeys), s.run, s);
+  return s;
+}
+
+Scenario parse_component_section(const nlohmann::json& component, double tick_s, const std::string& file,
+                                 const std::string& path) {
+  Scenario s;
+  s.file = file;
+  s.run = section_run(tick_s, file);
+  parse_component(Reader(s.file, component, path, field_keys(s.component, nullptr)), s.run, s.component);
+  return s;
+}
+
 Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& file) {
   Scenario s;
   s.file = file;
   const Reader top(s.file, doc, "", {"description", "run", "gyro", "component", "body", "guidance"});
   s.description = top.text("description", "");
   s.run = parse_run(top.object("run", {"tick_s", "rate_hz", "ticks", "duration_s", "precision"}));
-  parse_gyro(top.object("gyro", {"plant", "rotor", "limits", "gravity", "errors", "gimbal", "pickoff", "torquer",
-                                 "seed", "faults"}),
-             s.run, s);
+  parse_gyro(top.object("gyro", kGyroKeys), s.run, s);
   parse_component(top.object("component", field_keys(s.component, nullptr)), s.run, s.component);
   s.body = parse_body(
       top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force"}), s);
   s.guidance = parse_guidance(top.object("guidance", {"schedule"}), s.run, s.file);
-  record_values(doc, "", s.values);
+  s.document = std::make_shared<const json>(doc);
   return s;
 }
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <stdexcept>
@@ -89,16 +90,35 @@ struct Scenario {
   bool body_rate_pitch_yaw_only{false};  // body.rate_rad_s written as (q, r)
   bool body_accel_lateral_normal{false};  // body.accel written (lateral y, normal z)
   std::vector<GuidanceEvent> guidance;      // sorted by time
-  // Every number, string and boolean of the file as written, by JSON path (for messages
-  // about a value the component or the stub refused).
-  std::map<std::string, std::string> values;
+  // The file as written (for messages about a value the component or the stub refused, and
+  // the float run's range check; written_values() lists it by JSON path, when asked).
+  std::shared_ptr<const nlohmann::json> document;
 };
+
+// Every number, string and boolean of the scenario's file as written, by JSON path.
+[[nodiscard]] std::map<std::string, std::string> written_values(const Scenario& s);
 
 // Parses and checks the schema and the values the component and stub do not check
 // themselves (times, names, counts). Throws ScenarioError; `file` names the source.
 [[nodiscard]] Scenario parse_scenario(std::string_view json_text, const std::string& file);
 // The same from a parsed document (gyro_campaign's dispersed scenarios).
 [[nodiscard]] Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& file);
+
+// A scenario's "gyro" section alone, at the tick tick_s, with the keys, defaults and refusals
+// of docs/scenarios.md: a Scenario whose gyro (and fault_count, run.tick_s) is set, for
+// gyro_field_path(). Refusals name the field below `path` ("rotor.pitch_inertia" for path "").
+// The Python module's SimulatedGyro takes its keywords this way. Throws ScenarioError.
+[[nodiscard]] Scenario parse_gyro_section(const nlohmann::json& gyro, double tick_s, const std::string& file,
+                                          const std::string& path);
+// The same for the "component" section (the Scenario's component).
+[[nodiscard]] Scenario parse_component_section(const nlohmann::json& component, double tick_s,
+                                               const std::string& file, const std::string& path);
+
+// The sections a scenario writes for these configurations: what parse_gyro_section and
+// parse_component_section read back as them (every field written, the gyro's first
+// `fault_count` faults). The example gyros' scenario form (gyro.examples in Python).
+[[nodiscard]] nlohmann::json gyro_section(const SimulatedGyroConfig<double>& c, std::size_t fault_count);
+[[nodiscard]] nlohmann::json component_section(const GyroComponentConfig<double>& c);
 
 // Reads the file and parses it. A file that cannot be opened or read, a directory, or more
 // than kMaxScenarioBytes is a ScenarioError with field "(file)"; reading is bounded even for

@@ -71,7 +71,7 @@ const char* precision_name(const Scenario& s) { return to_string(s.run.precision
 
 void float_range(const Scenario& s) {
   constexpr auto kMax = static_cast<double>(std::numeric_limits<float>::max());
-  for (const auto& [path, text] : s.values) {
+  for (const auto& [path, text] : written_values(s)) {
     double v = 0;
     const std::from_chars_result r = std::from_chars(text.data(), text.data() + text.size(), v);
     if (r.ec != std::errc() || r.ptr != text.data() + text.size()) continue;  // not a number

@@ -135,8 +135,9 @@ std::string rule_text(const ConfigCheck& c) {
 std::string refusal(const Scenario& s, const std::string& path, const char* who, const ConfigCheck& c) {
   std::string r = to_string(c.status);
   if (c.status == Status::kNumericalOverflow) r += ": the rotor's exact step over one tick overflows";
-  const auto v = s.values.find(path);
-  if (v != s.values.end()) r += " (value " + v->second + ")";
+  const std::map<std::string, std::string> values = written_values(s);
+  const auto v = values.find(path);
+  if (v != values.end()) r += " (value " + v->second + ")";
   r += "; refused by ";
   r += who;
   r += "::configure";

@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include "csv_writer.hpp"
 #include "gyro/status.hpp"
@@ -74,6 +75,24 @@ class TickObserver {
   // Once, after both sides were configured and before tick 0.
   virtual void on_start() {}
   virtual void on_tick(const TickRecord& r) = 0;
+};
+
+// Shows every tick to several observers, in order (the extra columns go to each).
+class FanOutObserver final : public TickObserver {
+ public:
+  explicit FanOutObserver(std::vector<TickObserver*> to) : to_(std::move(to)) {}
+  void set_extra_columns(std::span<const std::string_view> names, std::function<void(CsvWriter&)> write) override {
+    for (TickObserver* o : to_) o->set_extra_columns(names, write);
+  }
+  void on_start() override {
+    for (TickObserver* o : to_) o->on_start();
+  }
+  void on_tick(const TickRecord& r) override {
+    for (TickObserver* o : to_) o->on_tick(r);
+  }
+
+ private:
+  std::vector<TickObserver*> to_;
 };
 
 // Every column written (the required ones first); see docs/scenarios.md for their meaning.

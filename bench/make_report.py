@@ -634,6 +634,57 @@ def gimbal_section(rdir):
     return "\n".join(lines)
 
 
+INTEGRATOR_NAMES = {
+    "plant": "GimbalPlant, error target (sub-steps from its estimate)",
+    "plant_fixed": "GimbalPlant, tight setting (fixed rule, 0.5 rad per sub-step)",
+    "rk4": "Odeint runge_kutta4, fixed steps",
+    "dopri5": "Odeint controlled runge_kutta_dopri5",
+    "rkf78": "Odeint controlled runge_kutta_fehlberg78",
+}
+INTEGRATOR_SETTING = {"plant": "error_target_rad", "plant_fixed": "", "rk4": "steps per tick",
+                      "dopri5": "absolute tolerance", "rkf78": "absolute tolerance"}
+INTEGRATOR_CASES = {"seeker_2khz": "2 kHz tick", "seeker_1khz": "1 kHz tick"}
+
+
+def gimbal_integrators_section(rdir):
+    """The plant against Odeint on its right-hand side, at equal error (gimbal_integrators.csv)."""
+    rows = read_csv(os.path.join(rdir, "gimbal_integrators.csv"))
+    if not rows:
+        return "*Pending: scripts/bench.sh fills this section (gimbal_integrators.csv was not produced).*"
+    lines = ["| tick | integrator | setting | worst gimbal-angle error over 1 s (rad) | evaluations "
+             "| instructions per simulated second | against rkf78 |",
+             "|---|---|--:|--:|--:|--:|--:|"]
+    rkf = {r["case"]: float(r["instructions"]) for r in rows if r["contender"] == "rkf78"}
+    for r in rows:
+        ir = float(r["instructions"])
+        setting = INTEGRATOR_SETTING[r["contender"]]
+        value = "" if not setting else (f"{int(float(r['setting']))}" if r["contender"] == "rk4"
+                                        else f"{float(r['setting']):.3g}")
+        evals = "" if r["contender"].startswith("plant") else fmt_int(int(r["evaluations"]))
+        lines.append(f"| {INTEGRATOR_CASES[r['case']]} | {INTEGRATOR_NAMES[r['contender']]} "
+                     f"| {value} {('(' + setting + ')') if setting else ''} | {fmt_err(float(r['error_rad']))} "
+                     f"| {evals} | {fmt_int(ir)} | {ir / rkf[r['case']]:.2f} |")
+    return "\n".join(lines)
+
+
+def campaign_run_section(rdir):
+    """A run of campaigns/seeker_faults.json, by part, per run (campaign_run.csv)."""
+    rows = read_csv(os.path.join(rdir, "campaign_run.csv"))
+    if not rows:
+        return "*Pending: scripts/bench.sh fills this section (campaign_run.csv was not produced).*"
+    v = {r["part"]: float(r["instructions"]) for r in rows}
+    run = v["run"]
+    lines = [f"| part (per run, mean of {int(v['runs'])}) | instructions | share of the run |", "|---|--:|--:|"]
+    for part, label in (("run", "the run (execute_run: scenario, SIL loop, metrics)"),
+                        ("plant", "the gimbal plant (GimbalPlant::step)"),
+                        ("component", "the flight component (GyroComponent::step)"),
+                        ("overhead", "the run's set-up and bookkeeping (the run less its SIL loop's ticks)")):
+        lines.append(f"| {label} | {fmt_int(v[part])} | {100 * v[part] / run:.1f} % |")
+    lines.append(f"| once per campaign: the process's start-up (libraries, reading the campaign) "
+                 f"| {fmt_int(v['startup'])} | |")
+    return "\n".join(lines)
+
+
 # ---------------------------------------------------------------------------------------
 
 
@@ -680,6 +731,8 @@ def main():
         "TICK_LEAN_FLOAT": f"{res.ticks.get('advance_lean_float', float('nan')):.0f}",
         "MODEL": model_section(res),
         "GIMBAL": gimbal_section(res.rdir),
+        "GIMBAL_INTEGRATORS": gimbal_integrators_section(res.rdir),
+        "CAMPAIGN_RUN": campaign_run_section(res.rdir),
         "CLOCK_OVERHEAD": (f"{float(res.latency['clock_overhead']['median_ns']):.0f} ns"
                            if "clock_overhead" in res.latency else "n/a"),
         "TICK_ADVANCE_STEP": f"{res.ticks.get('advance_double', float('nan')) - 3:.0f}",

@@ -32,7 +32,7 @@ say "configure and build ($build)"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
   -DGYRO_BUILD_BENCH=ON -DGYRO_BUILD_TESTS=OFF -DGYRO_BUILD_TOOLS=ON >/dev/null
 cmake --build "$build" -j2 --target gyro_bench_calibrate gyro_bench_driver gyro_bench_wall \
-  gyro_bench_latency >/dev/null
+  gyro_bench_latency gyro_bench_gimbal_integrators >/dev/null
 
 rm -rf "$results"
 mkdir -p "$results/callgrind" "$results/samples"
@@ -131,6 +131,18 @@ for run in "seeker double" "seeker float" "seeker_coarse double" "report double"
     echo "$1,$2,$n,$ir,$shape" >> "$results/gimbal.csv"
   done
 done
+
+say "gimbal plant against Odeint on its right-hand side, at equal error (1e-7 rad over 1 s)"
+"$bin/gyro_bench_gimbal_integrators" calibrate 1e-7 > "$results/gimbal_integrators.calibration.csv"
+echo "case,contender,setting,error_rad,evaluations,instructions" > "$results/gimbal_integrators.csv"
+tail -n +2 "$results/gimbal_integrators.calibration.csv" | while IFS=, read -r case_id who setting err evals; do
+  ir=$(count "gi.$case_id.$who" "$bin/gyro_bench_gimbal_integrators" run "$case_id" "$who" "$setting")
+  echo "$case_id,$who,$setting,$err,$evals,$ir" >> "$results/gimbal_integrators.csv"
+done
+
+say "one run of campaigns/seeker_faults.json (scripts/campaign-run-cost.sh)"
+cmake --build "$build" -j2 --target gyro_campaign >/dev/null
+"$root/scripts/campaign-run-cost.sh" "$build" "$results/campaign_run.csv" >/dev/null
 
 say "the flight component's tick: x86-64, every scenario, Cortex-M4F/M7 (scripts/tick-cost.sh)"
 "$root/scripts/tick-cost.sh" "$build" "$results/tick-cost" > "$results/tick-cost.txt"

@@ -216,7 +216,7 @@ TEST(BoardPortSil, GivenTheSeekerThenItSlewsThroughThePortAsOnTheStub) {
   std::printf("hold rate rad/s: on the stub %.2e %.2e, through the board port %.2e %.2e\n", sil.hold_rate(0),
               sil.hold_rate(1), board.hold_rate(0), board.hold_rate(1));
   const double cmd_norm = std::hypot(0.3, 0.2);
-  // The SIL's closed-loop bound (tests/component_test.cpp): 1e-4 of the command.
+  // The SIL's closed-loop bound (tests/component_torque_test.cpp): 1e-4 of the command.
   EXPECT_LT(sil.slew_error.cwiseAbs().maxCoeff(), 1e-4 * cmd_norm);
   EXPECT_LT(board.slew_error.cwiseAbs().maxCoeff(), 1e-4 * cmd_norm);
   EXPECT_LT(board.hold_rate.cwiseAbs().maxCoeff(), 1e-4 * cmd_norm);

@@ -4,7 +4,8 @@
 #
 # parallel: the small campaign (tests/data/campaigns/small.json: every distribution, float
 #   and double runs, refused runs, random faults) with 1 and 2 threads, as 3 shards merged,
-#   and, when built with MPI, under mpiexec -np 1, 2 and 3: every output byte-identical.
+#   and, when built with MPI, under mpiexec -np 1, 2 and 3: every output byte-identical;
+#   --runs 12: the first 12 rows of it.
 # rerun: --run K reproduces run K's row exactly, and its scenario run by gyro_sil gives its
 #   time history byte for byte.
 # refusals: bad command lines, outputs that would overwrite inputs, shards that do not make
@@ -100,6 +101,22 @@ if(MODE STREQUAL "parallel")
     message(STATUS "gyro_campaign built without MPI: the mpiexec runs are skipped")
   endif()
 
+  # --runs N: the first N runs, each row the same as in the whole campaign; the outputs say N runs.
+  run_ok("${EXE}" run "${campaign}" --runs 12 -o "${WORK}/first12" -j 2 --no-plots -q)
+  file(READ "${WORK}/first12/runs.csv" first)
+  file(READ "${ref}/runs.csv" whole)
+  string(FIND "${whole}" "${first}" at)
+  file(STRINGS "${WORK}/first12/runs.csv" first_rows)
+  list(LENGTH first_rows first_n)
+  if(NOT at EQUAL 0 OR NOT first_n EQUAL 13)
+    message(FATAL_ERROR "--runs 12: the rows differ from the first 12 of the whole campaign")
+  endif()
+  file(READ "${WORK}/first12/campaign.json" resolved)
+  string(JSON n GET "${resolved}" runs)
+  if(NOT n EQUAL 12)
+    message(FATAL_ERROR "--runs 12: campaign.json says ${n} runs")
+  endif()
+
   # With plots: the summary shows them and they are PNG images.
   run_ok("${EXE}" run "${campaign}" -o "${WORK}/plots" -j 2 -q)
   foreach(png latency_cdf histograms)
@@ -177,6 +194,8 @@ elseif(MODE STREQUAL "refusals")
   run_refused(2 "more shards than the campaign's 30 runs" "${EXE}" run "${campaign}" --shard 1/31 -o "${WORK}/x")
   run_refused(2 "--run 30: the campaign has runs 0 to 29" "${EXE}" run "${campaign}" --run 30 -o "${WORK}/x")
   run_refused(2 "--run and --shard do not go together" "${EXE}" run "${campaign}" --run 1 --shard 1/2 -o "${WORK}/x")
+  run_refused(2 "runs: the first 31 runs: expected 1 to the campaign's 30" "${EXE}" run "${campaign}" --runs 31 -o "${WORK}/x")
+  run_refused(2 "--runs 0: run at least one" "${EXE}" run "${campaign}" --runs 0 -o "${WORK}/x")
   run_refused(2 "" "${EXE}" run "${campaign}")  # no -o
 
   # An output that would overwrite an input: the campaign itself, named like an output.

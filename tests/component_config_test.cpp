@@ -1,7 +1,8 @@
 // The configuration contract (docs/component.md, "Configuration contract"): every field of
-// the component's configuration has both bounds, rules between fields refuse what cannot work
-// together, a refusal names the field, the value, the bound and the rule, and check_all()
-// gives every violated rule.
+// the component's configuration has both bounds, each edge exactly where it is stated, rules
+// between fields refuse what cannot work together, a refusal names the field, the value, the
+// bound and the rule, check_all() gives every violated rule, and the component keeps the last
+// configuration it accepted.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,10 +15,12 @@
 #include "gyro/seeker_example.hpp"
 #include "gyro/sil_contract.hpp"
 #include "gyro/torque_shaper.hpp"
+#include "support/sil_fixture.hpp"
 
 namespace gyro {
-namespace {
+namespace component_config_test {
 
+using testing::Sil;
 using Seeker = SeekerExample<double>;
 
 std::string message(const ConfigCheck& c) {
@@ -32,7 +35,7 @@ ConfigCheckList<32> all_of(const GyroComponentConfig<double>& c) {
   return all;
 }
 
-TEST(ComponentConfig, GivenTheSeekerExampleWHENCheckedTHENNoRuleIsBroken) {
+TEST(ComponentConfig, TheSeekerExampleBreaksNoRule) {
   EXPECT_TRUE(all_of(Seeker::component()).empty());
   GyroComponentConfig<float> f;
   cast_fields(Seeker::component(), f);
@@ -44,7 +47,7 @@ TEST(ComponentConfig, GivenTheSeekerExampleWHENCheckedTHENNoRuleIsBroken) {
   EXPECT_TRUE(pair.empty());
 }
 
-TEST(ComponentConfig, GivenEveryNumberFieldWHENListedTHENItHasBothBounds) {
+TEST(ComponentConfig, EveryNumberFieldHasBothBounds) {
   const GyroComponentConfig<double> c{};
   visit_fields(
       [](const Field& f, const auto& m) {
@@ -61,7 +64,159 @@ TEST(ComponentConfig, GivenEveryNumberFieldWHENListedTHENItHasBothBounds) {
       c);
 }
 
-TEST(ComponentConfig, GivenASettleOf2To32TicksTHENRefusedAgainstLongestTime) {
+TEST(ComponentConfig, EachBadFieldIsRefusedByName) {
+  using C = GyroComponentConfig<double>;
+  struct Case {
+    const char* field;
+    void (*spoil)(C&);
+    Status status;
+  };
+  const Case cases[] = {
+      {"tick_s", [](C& c) { c.tick_s = 0; }, Status::kNonPositiveStep},
+      {"tick_s", [](C& c) { c.tick_s = std::nan(""); }, Status::kNonFiniteInput},
+      {"pitch_inertia", [](C& c) { c.pitch_inertia = -1; }, Status::kNonPositiveInertia},
+      {"yaw_inertia", [](C& c) { c.yaw_inertia = 0; }, Status::kNonPositiveInertia},
+      {"spin_inertia", [](C& c) { c.spin_inertia = 0; }, Status::kNonPositiveInertia},
+      {"friction", [](C& c) { c.friction = -1e-6; }, Status::kNegativeFriction},
+      {"friction", [](C& c) { c.friction = HUGE_VAL; }, Status::kNonFiniteInput},
+      {"nominal_spin_hz", [](C& c) { c.nominal_spin_hz = 0; }, Status::kOutOfRange},
+      {"min_spin_hz", [](C& c) { c.min_spin_hz = 500; }, Status::kOutOfRange},
+      {"max_pitch_rate_rad_s", [](C& c) { c.max_pitch_rate_rad_s = 0; }, Status::kOutOfRange},
+      {"max_yaw_rate_rad_s", [](C& c) { c.max_yaw_rate_rad_s = -1; }, Status::kOutOfRange},
+      {"max_torque", [](C& c) { c.max_torque = 0; }, Status::kOutOfRange},
+      {"cage_gain_1_s", [](C& c) { c.cage_gain_1_s = 1e4; }, Status::kOutOfRange},
+      {"gimbal_cone_limit_rad", [](C& c) { c.gimbal_cone_limit_rad = 2; }, Status::kOutOfRange},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = 0.6; }, Status::kOutOfRange},
+      {"small_angle_limit_rad", [](C& c) { c.small_angle_limit_rad = 0; }, Status::kOutOfRange},
+      {"pickoff_range_rad", [](C& c) { c.pickoff_range_rad = 0; }, Status::kOutOfRange},
+      {"max_pickoff_step_rad", [](C& c) { c.max_pickoff_step_rad = -1; }, Status::kOutOfRange},
+      {"estimator_gain", [](C& c) { c.estimator_gain = 1.5; }, Status::kOutOfRange},
+      {"residual_limit_rad", [](C& c) { c.residual_limit_rad = 0; }, Status::kOutOfRange},
+      {"residual_persistence_ticks", [](C& c) { c.residual_persistence_ticks = 0; }, Status::kOutOfRange},
+      {"invalid_persistence_ticks", [](C& c) { c.invalid_persistence_ticks = 0; }, Status::kOutOfRange},
+      {"spin_low_persistence_ticks", [](C& c) { c.spin_low_persistence_ticks = 0; }, Status::kOutOfRange},
+      {"torquer_fail_persistence_ticks", [](C& c) { c.torquer_fail_persistence_ticks = 0; },
+       Status::kOutOfRange},
+  };
+  for (const Case& k : cases) {
+    Sil<double> sil;
+    C c = Seeker::component();
+    k.spoil(c);
+    const ConfigCheck r = sil.component.configure(c);
+    EXPECT_EQ(r.status, k.status) << k.field;
+    ASSERT_NE(r.field, nullptr) << k.field;
+    EXPECT_STREQ(r.field, k.field);
+    EXPECT_EQ(sil.component.activate(), Status::kNotConfigured) << "a refused config is not kept";
+  }
+}
+
+// The margin's lower bound as check() takes it: the nutation of stopping twice the larger rate
+// limit, or the ticks at the rate limit before the shaped torque holds (1 + 2 m, m = 1 for the
+// seeker at 2 kHz), whichever is larger.
+double margin_floor(const GyroComponentConfig<double>& c) {
+  const double h = 2.0 * 3.14159265358979323846 * c.nominal_spin_hz * c.spin_inertia;
+  const double rate = std::max(c.max_pitch_rate_rad_s, c.max_yaw_rate_rad_s);
+  const double nutation = 2.0 * rate / (std::sqrt(h * h + c.friction * c.friction) / std::sqrt(c.pitch_inertia * c.yaw_inertia));
+  return std::max(nutation, 3.0 * rate * c.tick_s);
+}
+
+// The cage gain's upper bound for the seeker: a quarter of its nutation frequency, to the
+// last bit as check() computes it (H / J for J1 = J2 up to rounding), below 1 / tick.
+double cage_ceiling(const GyroComponentConfig<double>& c) {
+  const double h = 2.0 * 3.14159265358979323846 * c.nominal_spin_hz * c.spin_inertia;
+  const double beta_sq =
+      detail::rate_matrix_terms(RotorParameters<double>{c.pitch_inertia, c.yaw_inertia, c.friction, h}).beta_sq;
+  return std::min(kCageNutationShare * std::sqrt(beta_sq), 1.0 / c.tick_s);
+}
+
+// Each limit exactly at its edge: the inclusive ones are accepted, the strict ones refused.
+TEST(ComponentConfig, InclusiveEdgesAcceptedStrictOnesRefused) {
+  using C = GyroComponentConfig<double>;
+  struct Case {
+    const char* field;
+    void (*edge)(C&);
+    bool accepted;
+  };
+  const Case cases[] = {
+      {"cage_gain_1_s", [](C& c) { c.cage_gain_1_s = cage_ceiling(c); }, true},  // beta / 4
+      {"cage_gain_1_s", [](C& c) { c.cage_gain_1_s = std::nextafter(cage_ceiling(c), 1e9); }, false},
+      {"estimator_gain", [](C& c) { c.estimator_gain = 1.0; }, true},
+      // At a cone of pi/2 the shaper loses its notch at the protection cone: the bearings damp
+      // the nutation there (8.7 1/s after the turn gain), so the cage gain comes within that.
+      {"gimbal_cone_limit_rad",
+       [](C& c) {
+         c.gimbal_cone_limit_rad = c.pickoff_range_rad = kPi<double> / 2;
+         c.cage_gain_1_s = 8.0;
+       },
+       true},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = c.gimbal_cone_limit_rad; }, false},
+      {"min_spin_hz", [](C& c) { c.min_spin_hz = c.nominal_spin_hz; }, false},
+      {"min_spin_hz", [](C& c) { c.min_spin_hz = 0.0; }, true},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = 0.0; }, false},  // < a tick at the rate limit
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = std::nextafter(margin_floor(c), 0.0); }, false},
+      {"gimbal_stop_margin_rad", [](C& c) { c.gimbal_stop_margin_rad = margin_floor(c); }, true},
+  };
+  for (const Case& k : cases) {
+    C c = Seeker::component();
+    k.edge(c);
+    Sil<double> sil;
+    const ConfigCheck r = sil.component.configure(c);
+    if (k.accepted) {
+      EXPECT_TRUE(r.ok()) << k.field << ": " << (r.field ? r.field : "");
+    } else {
+      EXPECT_EQ(r.status, Status::kOutOfRange) << k.field;
+      ASSERT_NE(r.field, nullptr) << k.field;
+      EXPECT_STREQ(r.field, k.field);
+    }
+  }
+}
+
+// The configured nominal rotor must have a finite transition over a tick: a nominal spin so
+// high that H^2 overflows is refused at configure, not discovered in flight. Since the
+// contract bounds the spin (100 kHz), such a spin is refused by its own range first.
+TEST(ComponentConfig, ANominalSpinOf1e200IsRefusedByItsRange) {
+  Sil<double> sil;
+  GyroComponentConfig<double> c = Seeker::component();
+  c.nominal_spin_hz = 1e200;  // finite and above min_spin_hz
+  const ConfigCheck r = sil.component.configure(c);
+  EXPECT_EQ(r.status, Status::kOutOfRange);
+  EXPECT_EQ(r.bound, 1e5);
+  ASSERT_NE(r.field, nullptr);
+  EXPECT_STREQ(r.field, "nominal_spin_hz");  // the field responsible, not the tick
+  EXPECT_EQ(sil.component.activate(), Status::kNotConfigured) << "a refused config is not kept";
+}
+
+// Rate limits far beyond the contract's 100 rad/s (one tick's slew must stay within the
+// small-angle limit too), up to the largest double: refused, naming the first rate limit.
+TEST(ComponentConfig, RateLimitsBeyond100RadPerSecondAreRefused) {
+  for (const double limit : {1e300, 1e308, 1.7e308}) {
+    GyroComponentConfig<double> c = Seeker::component();
+    c.max_pitch_rate_rad_s = limit;
+    c.max_yaw_rate_rad_s = limit;
+    const ConfigCheck r = check(c);
+    ASSERT_FALSE(r.ok()) << limit;
+    EXPECT_STREQ(r.field, "max_pitch_rate_rad_s");
+    EXPECT_EQ(r.value, limit);
+    EXPECT_EQ(r.bound, 100.0);
+  }
+}
+
+// A torque limit so small that max_torque / |torque| is subnormal (found by
+// fuzz_component_tick: scaling by that ratio overshot the limit by 5e-15 relative) cannot
+// precess the spin axis at all: the configuration contract refuses it, naming the rule.
+TEST(ComponentConfig, ATinyTorqueLimitIsRefused) {
+  GyroComponentConfig<double> c = Seeker::component();
+  c.max_torque = 1.8816602877266144e-306;
+  const ConfigCheck r = check(c);
+  EXPECT_EQ(r.status, Status::kOutOfRange);
+  ASSERT_NE(r.field, nullptr);
+  EXPECT_STREQ(r.field, "max_torque");
+  EXPECT_EQ(r.value, c.max_torque);
+  Sil<double> sil;
+  EXPECT_FALSE(sil.start(c));
+}
+
+TEST(ComponentConfig, ASettleBeyondTheLongestTimeIsRefused) {
   GyroComponentConfig<double> c = Seeker::component();
   c.uncage_settle_ticks = 4294967295u;
   const ConfigCheck r = check(c);
@@ -75,7 +230,7 @@ TEST(ComponentConfig, GivenASettleOf2To32TicksTHENRefusedAgainstLongestTime) {
             "(20000): the torquers would stay off longer than the contract's longest time");
 }
 
-TEST(ComponentConfig, GivenASubnormalBodyRateLimitTHENRefusedAsALockOut) {
+TEST(ComponentConfig, ATinyBodyRateLimitIsRefusedAsALockOut) {
   GyroComponentConfig<double> c = Seeker::component();
   c.max_body_rate_rad_s = 5e-324;
   const ConfigCheck r = check(c);
@@ -93,7 +248,7 @@ TEST(ComponentConfig, GivenASubnormalBodyRateLimitTHENRefusedAsALockOut) {
             "slews would be refused: a lock-out");
 }
 
-TEST(ComponentConfig, GivenAResidualLimitBelowTwoLsbsTHENRefusedNamingTheRule) {
+TEST(ComponentConfig, AResidualLimitBelowTwoLsbsIsRefused) {
   GyroComponentConfig<double> c = Seeker::component();
   c.pickoff_lsb_rad = 6.103515625e-05;
   EXPECT_TRUE(check(c).ok());
@@ -113,7 +268,7 @@ TEST(ComponentConfig, GivenAResidualLimitBelowTwoLsbsTHENRefusedNamingTheRule) {
   EXPECT_NEAR(n.bound, 4.5e-4, 1e-18);
 }
 
-TEST(ComponentConfig, GivenTheHardwarePickoffWHENResidualBelowItTHENRefused) {
+TEST(ComponentConfig, AResidualBelowTheHardwaresLsbIsRefused) {
   SimulatedGyroConfig<double> g = Seeker::stub();
   g.pickoff.lsb_rad = 6.103515625e-05;
   GyroComponentConfig<double> c = Seeker::component();
@@ -127,7 +282,7 @@ TEST(ComponentConfig, GivenTheHardwarePickoffWHENResidualBelowItTHENRefused) {
             "a fault");
 }
 
-TEST(ComponentConfig, GivenAPickoffStepBeyondTheRangeTHENRefused) {
+TEST(ComponentConfig, APickoffStepBeyondTheRangeIsRefused) {
   GyroComponentConfig<double> c = Seeker::component();
   c.max_pickoff_step_rad = 1.0;  // range 0.6
   const ConfigCheck r = check(c);
@@ -139,7 +294,7 @@ TEST(ComponentConfig, GivenAPickoffStepBeyondTheRangeTHENRefused) {
             "believes any reading");
 }
 
-TEST(ComponentConfig, GivenAPickoffRangeOf5RadTHENRefusedOnBothSides) {
+TEST(ComponentConfig, APickoffRangeOf5RadIsRefusedOnBothSides) {
   GyroComponentConfig<double> c = Seeker::component();
   c.pickoff_range_rad = 5.0;
   const ConfigCheck r = check(c);
@@ -152,7 +307,7 @@ TEST(ComponentConfig, GivenAPickoffRangeOf5RadTHENRefusedOnBothSides) {
   EXPECT_EQ(s.relation, Relation::kAbove);
 }
 
-TEST(ComponentConfig, GivenATorqueLimit100TimesTheTorquersTHENRefused) {
+TEST(ComponentConfig, ATorqueLimitBeyondTheTorquersIsRefused) {
   SimulatedGyroConfig<double> g = Seeker::stub();
   g.torquer.max_torque = 0.1;
   GyroComponentConfig<double> c = Seeker::component();
@@ -172,7 +327,7 @@ TEST(ComponentConfig, GivenATorqueLimit100TimesTheTorquersTHENRefused) {
   EXPECT_NEAR(own.bound, 0.1 * 0.01 * std::pow(2 * kPi<double> * 400 * 3e-5, 2) / 2e-5, 1e-12);
 }
 
-TEST(ComponentConfig, GivenAZeroCageGainTHENRefusedForTheStopProtection) {
+TEST(ComponentConfig, ACageGainOfZeroOrOverATickIsRefused) {
   GyroComponentConfig<double> c = Seeker::component();
   c.cage_gain_1_s = 0;
   EXPECT_STREQ(check(c).field, "cage_gain_1_s");
@@ -185,7 +340,7 @@ TEST(ComponentConfig, GivenAZeroCageGainTHENRefusedForTheStopProtection) {
 // A loop commanding the spin axis's rate from the gimbal angles drives the nutation it reads:
 // the cage gain stays below a quarter of the nutation frequency, and where no torque shaper
 // can be designed (a tick of under pi/30 of nutation phase), below the bearings' damping.
-TEST(ComponentConfig, GivenACageGainThatDrivesTheNutationTHENRefused) {
+TEST(ComponentConfig, ACageGainDrivingTheNutationIsRefused) {
   GyroComponentConfig<double> c = Seeker::component();
   const double beta = 2 * kPi<double> * c.nominal_spin_hz * c.spin_inertia / c.pitch_inertia;  // J1 = J2
   c.cage_gain_1_s = 1000;  // within 1 / tick (2000)
@@ -223,7 +378,7 @@ TEST(ComponentConfig, GivenACageGainThatDrivesTheNutationTHENRefused) {
 // rotor (C = 1.5 J) at a cone limit of 1.3 rad (protection from 1.25 rad): 3.8 times slower,
 // and the shaper passes 91 % of it, no better than none; without bearing damping the stop
 // protection's turn gain pumps it. At the seeker's own (0.45 rad) 1.16 times, 20 % passed.
-TEST(ComponentConfig, GivenAProtectionConeWhereTheShaperLosesItsNotchTHENTheBearingsMustDampIt) {
+TEST(ComponentConfig, BeyondTheShapersNotchTheBearingsMustDamp) {
   GyroComponentConfig<double> c = Seeker::component();
   const double h = 2 * kPi<double> * c.nominal_spin_hz * c.spin_inertia;
   // The three taps' gain at a nutation of `phase` rad a tick, summed here as complex numbers.
@@ -256,7 +411,7 @@ TEST(ComponentConfig, GivenAProtectionConeWhereTheShaperLosesItsNotchTHENTheBear
 // The estimator corrects a fraction of the residual a tick: what its model misses of a tick's
 // motion (a hundredth) settles at that over the gain, within the residual limit. Without
 // correction (gain 0) the prediction drifts from the gimbal without bound.
-TEST(ComponentConfig, GivenAnEstimatorGainTooSmallForTheResidualLimitTHENRefused) {
+TEST(ComponentConfig, AnEstimatorGainTooSmallIsRefused) {
   GyroComponentConfig<double> c = Seeker::component();
   const double rate = std::max(c.max_pitch_rate_rad_s, c.max_yaw_rate_rad_s);
   const double floor = 0.01 * rate * c.tick_s / c.residual_limit_rad;
@@ -275,7 +430,7 @@ TEST(ComponentConfig, GivenAnEstimatorGainTooSmallForTheResidualLimitTHENRefused
   EXPECT_TRUE(check(c).ok()) << message(check(c));
 }
 
-TEST(ComponentConfig, GivenSeveralBadFieldsWHENCheckAllTHENEveryRuleIsListed) {
+TEST(ComponentConfig, CheckAllListsEveryBrokenRule) {
   GyroComponentConfig<double> c = Seeker::component();
   c.max_pickoff_step_rad = 1.0;           // above the range
   c.gimbal_stop_margin_rad = 1e-6;        // less than a tick at the rate limit, and than the
@@ -293,7 +448,7 @@ TEST(ComponentConfig, GivenSeveralBadFieldsWHENCheckAllTHENEveryRuleIsListed) {
   EXPECT_STREQ(check(c).field, all[0].field);
 }
 
-TEST(ComponentConfig, GivenOwnRangesBrokenWHENCheckAllTHENEachFieldNamedOnce) {
+TEST(ComponentConfig, CheckAllNamesEachFieldOnce) {
   GyroComponentConfig<double> c = Seeker::component();
   c.tick_s = 1.0;  // beyond 0.1 s
   c.estimator_gain = 1.5;
@@ -306,7 +461,7 @@ TEST(ComponentConfig, GivenOwnRangesBrokenWHENCheckAllTHENEachFieldNamedOnce) {
   EXPECT_EQ(all.find("estimator_gain")->bound, 1.0);
 }
 
-TEST(ComponentConfig, GivenAConeBeyondTheStopTHENRefusedAgainstTheHardware) {
+TEST(ComponentConfig, AConeBeyondTheHardwaresStopIsRefused) {
   GyroComponentConfig<double> c = Seeker::component();
   SimulatedGyroConfig<double> g = Seeker::stub();
   g.gimbal.stop_cone_rad = 0.45;  // inside the component's 0.5 rad cone
@@ -317,7 +472,7 @@ TEST(ComponentConfig, GivenAConeBeyondTheStopTHENRefusedAgainstTheHardware) {
   EXPECT_EQ(r->bound, 0.45);
 }
 
-TEST(ComponentConfig, GivenASmallBufferWHENFormattedTHENTruncatedAndTerminated) {
+TEST(ComponentConfig, ARefusalIsTruncatedToASmallBuffer) {
   GyroComponentConfig<double> c = Seeker::component();
   c.estimator_gain = 1.5;
   char buf[16];
@@ -326,5 +481,24 @@ TEST(ComponentConfig, GivenASmallBufferWHENFormattedTHENTruncatedAndTerminated) 
   EXPECT_EQ(std::string(buf), "estimator_gain ");
 }
 
-}  // namespace
+// A refused configure() leaves the component with the configuration it accepted before.
+TEST(ComponentConfig, ARefusedConfigureKeepsTheAcceptedOne) {
+  Sil<double> sil;
+  GyroComponentConfig<double> c = Seeker::component();
+  c.use_spin_readback = false;
+  c.residual_persistence_ticks = 33;
+  ASSERT_TRUE(sil.component.configure(c).ok());
+  GyroComponentConfig<double> bad = c;
+  bad.tick_s = -1.0;
+  bad.residual_persistence_ticks = 7;
+  EXPECT_EQ(sil.component.configure(bad).status, Status::kNonPositiveStep);
+  const GyroComponentConfig<double>& kept = sil.component.config();
+  EXPECT_EQ(kept.tick_s, c.tick_s);
+  EXPECT_EQ(kept.residual_persistence_ticks, 33U);
+  EXPECT_FALSE(kept.use_spin_readback);
+  EXPECT_EQ(kept.nominal_spin_hz, c.nominal_spin_hz);
+}
+
+
+}  // namespace component_config_test
 }  // namespace gyro

@@ -1,6 +1,8 @@
 // The component keeps flying whatever its inputs (docs/component.md, "Corrupt input"): each
-// class of corrupt input alone, then random streams of corrupt and good input interleaved,
-// against the SIL stub, in float and double.
+// class of corrupt input alone (the tick count, the guidance commands, the navigation, the
+// pickoff readings, the spin readback), then random streams of corrupt and good input
+// interleaved, against the SIL stub (behind a corrupting wire or a faulty harness) and a
+// scripted port, in float and double.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,18 +11,23 @@
 #include <random>
 
 #include "gyro/gyro_component.hpp"
-#include "gyro/persistence.hpp"
 #include "gyro/seeker_example.hpp"
 #include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "support/corrupting_port.hpp"
+#include "support/faulty_harness.hpp"
+#include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
 namespace gyro {
-namespace {
+namespace component_fail_operational_test {
 
+using testing::Bench;
 using testing::CorruptingPort;
+using testing::counter_of;
+using testing::FaultyRig;
 using testing::SeekerGyro;
+using testing::Sil;
 using testing::telemetry_finite;
 using testing::WireFault;
 
@@ -118,56 +125,9 @@ struct Rig {
 
 const GyroComponentConfig<double> kSeekerConfig = SeekerGyro<double>::component();
 
-// ---- the persistence monitor ---------------------------------------------------------------
-
-TEST(PersistenceMonitor, GivenNConsecutiveBadTicksThenTripsExactlyAtTheNth) {
-  PersistenceMonitor m;
-  for (std::uint32_t k = 1; k < 10; ++k) EXPECT_FALSE(m.update(true, 10)) << k;
-  EXPECT_TRUE(m.update(true, 10));
-}
-
-TEST(PersistenceMonitor, GivenAnIntermittentConditionThenItTripsAboveOneInThreeAndNeverBelow) {
-  const auto ticks_to_trip = [](int bad, int period, int limit) {
-    PersistenceMonitor m;
-    for (int k = 0; k < limit; ++k) {
-      if (m.update(k % period < bad, 10)) return k + 1;
-    }
-    return -1;
-  };
-  EXPECT_EQ(ticks_to_trip(19, 20, 1000), 10) << "19 bad in 20: as fast as consecutive ones";
-  EXPECT_GT(ticks_to_trip(1, 2, 1000), 0) << "one in two";
-  EXPECT_LE(ticks_to_trip(1, 2, 1000), 4 * 10 + 2);
-  EXPECT_EQ(ticks_to_trip(1, 3, 100000), -1) << "one in three: counted, never latched";
-  EXPECT_EQ(ticks_to_trip(1, 20, 100000), -1);
-}
-
-TEST(PersistenceMonitor, GivenATrippedMonitorThenOneGoodTickUntripsItAndItsFillIsCapped) {
-  PersistenceMonitor m;
-  for (int k = 0; k < 1000; ++k) (void)m.update(true, 5);
-  EXPECT_EQ(m.fill(), 10u);
-  EXPECT_FALSE(m.update(false, 5));
-  EXPECT_TRUE(m.update(true, 5)) << "and the next bad tick trips it again";
-}
-
-// ---- calls before activation ---------------------------------------------------------------
-
-TEST(ComponentFailOperational, GivenStepsBeforeActivationThenRefusedCountedAndNothingTouched) {
-  SimulatedGyro<double> gyro;
-  CorruptingPort<double> wire{gyro};
-  GyroComponent<double> c{wire};
-  GuidanceInput<double> g;
-  EXPECT_EQ(c.step(1, g), Status::kNotConfigured);
-  ASSERT_TRUE(c.configure(kSeekerConfig).ok());
-  EXPECT_EQ(c.step(2, g), Status::kNotConfigured);
-  EXPECT_EQ(c.telemetry().flags, static_cast<std::uint32_t>(kNotActive));
-  EXPECT_EQ(c.telemetry().counters[16], 2u) << "both refusals are counted";
-  EXPECT_EQ(c.mode(), GyroMode::kIdle);
-  EXPECT_EQ(wire.writes, 0);
-}
-
 // ---- the tick count --------------------------------------------------------------------------
 
-TEST(ComponentFailOperational, GivenOneCorruptedTickFarAheadThenTwoTicksFlaggedAndTheRunFliesOn) {
+TEST(ComponentTicks, ACountFarAheadCostsTwoFlaggedTicks) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -191,7 +151,7 @@ TEST(ComponentFailOperational, GivenOneCorruptedTickFarAheadThenTwoTicksFlaggedA
   EXPECT_EQ(rig.component.mode(), GyroMode::kCaged);
 }
 
-TEST(ComponentFailOperational, GivenARepeatedOrBackwardCountThenEachIsOneTickAndTheEstimatorStaysRight) {
+TEST(ComponentTicks, RepeatsAndStepsBackAreOneTickEach) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -213,7 +173,7 @@ TEST(ComponentFailOperational, GivenARepeatedOrBackwardCountThenEachIsOneTickAnd
   EXPECT_EQ(rig.component.mode(), GyroMode::kCaged);
 }
 
-TEST(ComponentFailOperational, GivenAGapOfLostTicksThenItIsBridgedFlaggedAndTheResidualStaysSmall) {
+TEST(ComponentTicks, AGapIsBridgedAndTheResidualStaysSmall) {
   // Two rigs, one ticked every tick, one missing ticks: after a gap of g ticks the component
   // predicts over g ticks, so its residual stays at the level of the rig that missed nothing.
   for (const std::uint64_t gap : {2ULL, 5ULL, 8ULL}) {
@@ -237,9 +197,49 @@ TEST(ComponentFailOperational, GivenAGapOfLostTicksThenItIsBridgedFlaggedAndTheR
   EXPECT_NE(rig.tm().flags & kTickInvalid, 0u);
 }
 
-// ---- guidance commands and navigation ---------------------------------------------------------
+// Lost ticks are no bad input: each bridged gap, the longest included, is flagged and counted
+// once, the tick runs with status kOk, and the tick after it is an ordinary one.
+TEST(ComponentTicks, ABridgedGapIsCountedNotIgnored) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.run(5);
+  ASSERT_EQ(b.step_at(b.tick + 3), Status::kOk) << "lost ticks are no bad input";
+  EXPECT_TRUE(b.raised(kTickSkipped));
+  EXPECT_FALSE(b.raised(kTickInvalid));
+  EXPECT_EQ(b.tm().counters[counter_of(kTickSkipped)], 1u);
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_FALSE(b.raised(kTickSkipped)) << "the tick after a bridged gap is an ordinary one";
+  ASSERT_EQ(b.step_at(b.tick + kSeekerConfig.max_tick_gap), Status::kOk) << "the longest gap bridged";
+  EXPECT_TRUE(b.raised(kTickSkipped));
+  EXPECT_EQ(b.tm().counters[counter_of(kTickSkipped)], 2u);
+  EXPECT_EQ(b.tm().counters[counter_of(kTickInvalid)], 0u);
+}
 
-TEST(ComponentFailOperational, GivenANonFiniteSlewCommandThenTheLastUsableOneIsHeldFlaggedAndCounted) {
+// The tick tracker's elapsed ticks reach the pickoff gate: a slew of 1 rad/s moves the gimbal
+// 5e-4 rad a tick, so over a gap of four ticks the reading moves beyond one tick's bound of
+// 1.75e-3 rad and within four ticks'.
+TEST(ComponentTicks, AReadingAfterAGapGetsTheGapsJumpBound) {
+  GyroComponentConfig<double> c = kSeekerConfig;
+  c.max_pickoff_step_rad = 1.75e-3;  // the contract's least: 2 (a tick at 1 rad/s + a full-torque nutation)
+  Sil<double> sil;
+  ASSERT_TRUE(sil.start(c));
+  ASSERT_TRUE(sil.uncage());
+  sil.guidance.slew_rate_cmd_rad_s = Vector2<double>(1.0, 0.0);
+  sil.run(40);
+  ASSERT_EQ(sil.tm().flags & (kPickoffJump | kPickoffInvalid | kPickoffStale), 0u);
+  const Vector2<double> before = sil.tm().gimbal_measured_rad;
+  ASSERT_EQ(sil.lose_ticks(3), Status::kOk);
+  ASSERT_EQ(sil.step(), Status::kOk);
+  EXPECT_NE(sil.tm().flags & kTickSkipped, 0u);
+  const double moved = (sil.tm().gimbal_measured_rad - before).cwiseAbs().maxCoeff();
+  EXPECT_EQ(sil.tm().flags & kPickoffJump, 0u) << "a move of " << moved << " rad over 4 ticks";
+  EXPECT_GT(moved, c.max_pickoff_step_rad) << "the reading after the gap was accepted";
+  EXPECT_LT(moved, 4 * c.max_pickoff_step_rad);
+}
+
+// ---- guidance commands ------------------------------------------------------------------------
+
+TEST(ComponentGuidance, ANonFiniteSlewHoldsTheLastOne) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -259,7 +259,36 @@ TEST(ComponentFailOperational, GivenANonFiniteSlewCommandThenTheLastUsableOneIsH
   EXPECT_EQ(rig.tm().counters[11], 2u);
 }
 
-TEST(ComponentFailOperational, GivenNavigationMarkedInvalidWithNonFiniteRatesThenTheTickIsFlownNotRefused) {
+// Run A is sent a NaN slew command and an unknown request in the middle; run B is sent the
+// last usable command instead. Apart from the flags and counters of what A ignored,
+// everything is bit-identical.
+TEST(ComponentGuidance, AnIgnoredFieldLeavesNoOtherTrace) {
+  Sil<double> a, b;
+  ASSERT_TRUE(a.start());
+  ASSERT_TRUE(b.start());
+  ASSERT_TRUE(a.uncage());
+  ASSERT_TRUE(b.uncage());
+  a.guidance.slew_rate_cmd_rad_s = b.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.1, 0.05);
+  a.run(50);
+  b.run(50);
+  a.guidance.slew_rate_cmd_rad_s(1) = std::nan("");
+  EXPECT_EQ(a.step(), Status::kInputIgnored);
+  EXPECT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(a.tm().flags & ~b.tm().flags, static_cast<std::uint32_t>(kCommandRejected));
+  a.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.1, 0.05);
+  EXPECT_EQ(a.step(static_cast<ModeRequest>(7)), Status::kInputIgnored);
+  EXPECT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(a.tm().counters[11], 2u);
+  a.run(300);
+  b.run(300);
+  GyroTelemetry<double> ta = a.tm(), tb = b.tm();
+  ta.counters[11] = tb.counters[11] = 0;
+  EXPECT_TRUE(testing::identical(ta, tb));
+}
+
+// ---- navigation -------------------------------------------------------------------------------
+
+TEST(ComponentNavigation, AnOutageIsFlownNotRefused) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -287,7 +316,7 @@ TEST(ComponentFailOperational, GivenNavigationMarkedInvalidWithNonFiniteRatesThe
   EXPECT_FALSE(rig.ever_at_stop);
 }
 
-TEST(ComponentFailOperational, GivenNavigationMarkedValidButUnusableThenIgnoredFlaggedAndCounted) {
+TEST(ComponentNavigation, UnusableNavigationIsIgnored) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -309,9 +338,33 @@ TEST(ComponentFailOperational, GivenNavigationMarkedValidButUnusableThenIgnoredF
   EXPECT_EQ(rig.component.mode(), GyroMode::kFree);
 }
 
+// Navigation that stops vouching for the body (marked invalid) leaves its rates unknown: the
+// torque law's bearing term, friction times the body's rate on the gimbal axes, drops out
+// instead of holding the last believed rate. Caged at a zero reading the command is then
+// exactly that of a body at rest once the shaper has let the earlier commands out.
+TEST(ComponentNavigation, TorqueLawTakesTheBodyRateAsUnknown) {
+  Bench turning;
+  Bench still;
+  ASSERT_TRUE(turning.ok && still.ok);
+  turning.guidance.body_rate_rad_s = Vector3<double>(0.0, 0.5, -0.3);  // (roll, pitch, yaw)
+  turning.run(10);
+  still.run(10);
+  EXPECT_GT(turning.tm().torque_cmd.cwiseAbs().maxCoeff(), 1e-3) << "caged, the loop follows the turning body";
+  turning.guidance.nav_valid = false;
+  still.guidance.nav_valid = false;
+  for (int k = 0; k < 40; ++k) {
+    (void)turning.step();
+    (void)still.step();
+  }
+  EXPECT_TRUE(turning.raised(kNavInvalid));
+  EXPECT_TRUE(turning.tm().torque_cmd == still.tm().torque_cmd)
+      << turning.tm().torque_cmd.transpose() << " against " << still.tm().torque_cmd.transpose();
+  EXPECT_TRUE(turning.port.torque_written == Vector2<double>::Zero()) << turning.port.torque_written.transpose();
+}
+
 // ---- the pickoffs -------------------------------------------------------------------------------
 
-TEST(ComponentFailOperational, GivenNineteenInvalidReadingsInEveryTwentyThenTheFaultLatches) {
+TEST(ComponentPickoffs, NineteenInvalidInTwentyLatchAFault) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -324,7 +377,7 @@ TEST(ComponentFailOperational, GivenNineteenInvalidReadingsInEveryTwentyThenTheF
   EXPECT_LE(k, static_cast<int>(kSeekerConfig.invalid_persistence_ticks) + 2);
 }
 
-TEST(ComponentFailOperational, GivenAPersistentBiasJumpThenFaultLatchedAndACageRequestRecoversTheGyro) {
+TEST(ComponentPickoffs, ABiasJumpLatchesAndCagingRecovers) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -341,7 +394,7 @@ TEST(ComponentFailOperational, GivenAPersistentBiasJumpThenFaultLatchedAndACageR
   EXPECT_EQ(rig.tm().flags & kPickoffJump, 0u);
 }
 
-TEST(ComponentFailOperational, GivenReadingsMissingLongerThanAJumpAllowsThenTheFirstGoodOneIsAccepted) {
+TEST(ComponentPickoffs, TheFirstReadingAfterStaleOnesIsTaken) {
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -355,6 +408,79 @@ TEST(ComponentFailOperational, GivenReadingsMissingLongerThanAJumpAllowsThenTheF
   ASSERT_EQ(rig.step(), Status::kOk);
   EXPECT_EQ(rig.tm().flags & (kPickoffJump | kPickoffStale | kPickoffInvalid), 0u);
   EXPECT_EQ(rig.component.mode(), GyroMode::kFree);
+}
+
+// A reading beyond the pickoffs' physical range (valid bit set, sequence advancing) is not
+// believed: flagged invalid, not accepted, and a fault once it persists.
+TEST(ComponentPickoffs, OutOfRangeIsInvalidThenAFault) {
+  FaultyRig<double> rig;
+  ASSERT_TRUE(rig.start());
+  for (int k = 0; k < 20; ++k) ASSERT_EQ(rig.step(), Status::kOk);
+  const Vector2<double> accepted = rig.tm().gimbal_measured_rad;
+  rig.harness.angle_override = true;
+  rig.harness.angle_rad = Vector2<double>(0.0, -(kSeekerConfig.pickoff_range_rad + 0.01));
+  for (std::uint32_t n = 1; n < kSeekerConfig.invalid_persistence_ticks; ++n) {
+    ASSERT_EQ(rig.step(), Status::kOk);
+    EXPECT_NE(rig.tm().flags & kPickoffInvalid, 0U) << n;
+    EXPECT_EQ(rig.tm().gimbal_measured_rad, accepted) << "the last accepted reading stands";
+    EXPECT_EQ(rig.component.mode(), GyroMode::kCaged) << n;
+  }
+  ASSERT_EQ(rig.step(), Status::kOk);
+  EXPECT_EQ(rig.component.mode(), GyroMode::kFault);
+  EXPECT_EQ(rig.tm().counters[3], kSeekerConfig.invalid_persistence_ticks);  // kPickoffInvalid
+}
+
+// ---- the spin readback --------------------------------------------------------------------------
+
+// A stopped rotor is a reading, not a failed readback: flown, low, and nothing turns NaN.
+TEST(ComponentSpin, AStoppedRotorIsFlownAndLow) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = 0.0;
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.tm().spin_hz, 0.0) << "a stopped rotor is a reading, not a failed readback";
+  EXPECT_TRUE(b.raised(kSpinLow));
+  EXPECT_TRUE(telemetry_finite(b.tm()));
+}
+
+TEST(ComponentSpin, AFailedReadOrHugeSpinFliesTheNominal) {
+  {
+    Bench b;
+    ASSERT_TRUE(b.ok);
+    b.port.read_status = PortStatus::kTimeout;
+    b.port.fill_on_failure = true;  // the driver wrote a spin it did not read
+    b.port.reading.spin_hz = 350.0;
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_TRUE(b.raised(kPickoffInvalid));
+    EXPECT_EQ(b.tm().spin_hz, kSeekerConfig.nominal_spin_hz);
+  }
+  {
+    // J0 = 1: the largest double as a spin has a momentum of 2 pi times it, beyond any double.
+    GyroComponentConfig<double> c = kSeekerConfig;  // the seeker scaled to J0 = 1 (as the contract has it)
+    c.spin_inertia = 1.0;
+    c.pitch_inertia = 1.0;
+    c.yaw_inertia = 1.0;
+    c.friction = 20.0;
+    c.max_torque = 2000.0;
+    Bench b(c);
+    ASSERT_TRUE(b.ok);
+    b.port.reading.spin_hz = std::numeric_limits<double>::max();
+    ASSERT_EQ(b.step(), Status::kOk);
+    EXPECT_EQ(b.tm().spin_hz, c.nominal_spin_hz);
+    EXPECT_TRUE(telemetry_finite(b.tm()));
+  }
+}
+
+TEST(ComponentSpin, ANonFiniteOrNegativeSpinFliesTheNominal) {
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -1.0}) {
+    FaultyRig<double> rig;
+    ASSERT_TRUE(rig.start());
+    rig.harness.spin_override = true;
+    rig.harness.spin_hz = bad;
+    for (int k = 0; k < 5; ++k) ASSERT_EQ(rig.step(), Status::kOk);
+    EXPECT_EQ(rig.tm().spin_hz, kSeekerConfig.nominal_spin_hz) << bad;
+    EXPECT_TRUE(telemetry_finite(rig.tm())) << bad;
+  }
 }
 
 // ---- random streams of corrupt and good input -----------------------------------------------
@@ -437,12 +563,12 @@ void run_random_streams(std::uint64_t seed) {
   EXPECT_FALSE(rig.ever_at_stop);
 }
 
-TEST(ComponentFailOperationalProperty, GivenRandomStreamsOfCorruptAndGoodInputDoubleThenItAlwaysRecovers) {
+TEST(ComponentFailOperationalProperty, RecoversInDouble) {
   for (std::uint64_t seed = 1; seed <= 10; ++seed) run_random_streams<double>(seed);
 }
-TEST(ComponentFailOperationalProperty, GivenRandomStreamsOfCorruptAndGoodInputFloatThenItAlwaysRecovers) {
+TEST(ComponentFailOperationalProperty, RecoversInFloat) {
   for (std::uint64_t seed = 101; seed <= 110; ++seed) run_random_streams<float>(seed);
 }
 
-}  // namespace
+}  // namespace component_fail_operational_test
 }  // namespace gyro

@@ -1,16 +1,29 @@
-// Each fault the stub injects is detected by the component within a stated number of ticks;
-// the component goes to safe mode, counts it, and nothing in telemetry becomes NaN.
+// Faults of the hardware, against the SIL stub, a scripted port and a faulty harness: each
+// fault the stub injects is detected within a stated number of ticks, a low spin and failing
+// torquer writes latch after their persistence; the component goes to safe mode, counts it,
+// and nothing in telemetry becomes NaN. Glitches shorter than the persistence are counted only.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 
+#include "support/faulty_harness.hpp"
+#include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
 namespace gyro {
-namespace {
+namespace component_fault_test {
 
+using testing::Bench;
+using testing::counter_of;
+using testing::FaultyRig;
 using testing::SeekerGyro;
 using testing::Sil;
+using testing::telemetry_finite;
+
+const GyroComponentConfig<double> kSeeker = SeekerGyro<double>::component();
+
+// ---- the faults the stub injects -------------------------------------------------------------
 
 struct FaultCase {
   const char* name;
@@ -42,7 +55,7 @@ const FaultCase kCases[] = {
     {"spin motor failure", FaultKind::kSpinMotorFailure, -1, 0.05, kSpinLow, 80},
 };
 
-TEST(ComponentFaults, GivenEachInjectedFaultThenDetectedWithinItsBoundAndSafe) {
+TEST(ComponentFaults, EachInjectedFaultIsDetectedInItsBound) {
   constexpr std::uint64_t kStart = 1000;  // after uncaging (600 ticks) and 400 ticks of slew
   for (const FaultCase& fc : kCases) {
     SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
@@ -79,7 +92,7 @@ TEST(ComponentFaults, GivenEachInjectedFaultThenDetectedWithinItsBoundAndSafe) {
   }
 }
 
-TEST(ComponentFaults, GivenTransientDropoutThenRecoveryByCageRequest) {
+TEST(ComponentFaults, ACageRequestRecoversFromADropout) {
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
   s.faults[0].kind = FaultKind::kDropout;
   s.faults[0].start_tick = 800;
@@ -95,7 +108,7 @@ TEST(ComponentFaults, GivenTransientDropoutThenRecoveryByCageRequest) {
   EXPECT_EQ(sil.component.mode(), GyroMode::kFree);
 }
 
-TEST(ComponentFaults, GivenShortGlitchesBelowPersistenceThenNoFaultButCounted) {
+TEST(ComponentFaults, ShortGlitchesAreCountedNotLatched) {
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
   s.faults[0] = {FaultKind::kInvalidReading, 800, 5, -1, 0.0};
   s.faults[1] = {FaultKind::kDropout, 900, 5, -1, 0.0};
@@ -110,7 +123,7 @@ TEST(ComponentFaults, GivenShortGlitchesBelowPersistenceThenNoFaultButCounted) {
   EXPECT_EQ(sil.tm().counters[6], 0u);  // the estimator coasted through: no residual fault
 }
 
-TEST(ComponentFaults, GivenHealthyNoisyGyroThenNoFalseAlarmOverTenSeconds) {
+TEST(ComponentFaults, NoFalseAlarmInTenSecondsOfNoise) {
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
   s.pickoff.noise_rad = 2e-4;  // 10% of the residual limit, 1 sigma
   s.pickoff.lsb_rad = 1e-4;
@@ -130,5 +143,87 @@ TEST(ComponentFaults, GivenHealthyNoisyGyroThenNoFalseAlarmOverTenSeconds) {
   EXPECT_LT(sil.gyro.cone_rad(), 0.3);
 }
 
-}  // namespace
+// ---- the spin ---------------------------------------------------------------------------------
+
+TEST(ComponentFaults, ALowSpinLatchesAfterItsPersistence) {
+  Bench b;
+  ASSERT_TRUE(b.ok);
+  b.port.reading.spin_hz = 250.0;
+  for (std::uint32_t n = 1; n < kSeeker.spin_low_persistence_ticks; ++n) {
+    ASSERT_EQ(b.step(), Status::kOk);
+    ASSERT_EQ(b.component.mode(), GyroMode::kCaged) << n;
+  }
+  ASSERT_EQ(b.step(), Status::kOk);
+  EXPECT_EQ(b.component.mode(), GyroMode::kFault);
+  EXPECT_EQ(b.tm().counters[counter_of(kSpinLow)], kSeeker.spin_low_persistence_ticks);
+  EXPECT_EQ(b.tm().torque_cmd, Vector2<double>::Zero()) << "safe mode: torquers off";
+}
+
+// ---- the torquer's writes ---------------------------------------------------------------------
+
+constexpr std::size_t kWriteFailed = counter_of(kTorquerWriteFailed);
+
+// A refused write: the hardware is taken to hold the last torque written, which the telemetry
+// reports; the fault latches in the tick after the persistence-th consecutive failure (it is
+// decided before the tick's write).
+TEST(ComponentFaults, FailedWritesHoldTheLastTorqueThenLatch) {
+  FaultyRig<double> rig;
+  ASSERT_TRUE(rig.start());
+  for (int k = 0; k < 50; ++k) ASSERT_EQ(rig.step(), Status::kOk);
+  const Vector2<double> accepted = rig.gyro.torque_command();
+  ASSERT_GT(accepted.cwiseAbs().maxCoeff(), 0.0) << "caging a turning body needs torque";
+  ASSERT_EQ(rig.tm().torque_cmd, accepted);
+
+  rig.harness.write_status = PortStatus::kBusError;
+  const std::uint32_t persistence = kSeeker.torquer_fail_persistence_ticks;
+  for (std::uint32_t n = 1; n <= persistence; ++n) {
+    ASSERT_EQ(rig.step(), Status::kOk);
+    EXPECT_NE(rig.tm().flags & kTorquerWriteFailed, 0U) << n;
+    EXPECT_EQ(rig.tm().counters[kWriteFailed], n);
+    EXPECT_EQ(rig.tm().torque_cmd, accepted) << "telemetry reports the torque the hardware holds";
+    EXPECT_EQ(rig.gyro.torque_command(), accepted) << "no failed write reached the gyro";
+    EXPECT_EQ(rig.component.mode(), GyroMode::kCaged) << n;
+  }
+  ASSERT_EQ(rig.step(), Status::kOk);
+  EXPECT_EQ(rig.component.mode(), GyroMode::kFault);
+  EXPECT_NE(rig.tm().flags & kFaultLatched, 0U);
+  EXPECT_TRUE(telemetry_finite(rig.tm()));
+}
+
+// Bursts of persistence - 1 failures, each followed by twice as many good writes: the
+// persistence monitor drains between the bursts and never trips.
+TEST(ComponentFaults, WriteFailuresOneInThreeNeverLatch) {
+  FaultyRig<double> rig;
+  ASSERT_TRUE(rig.start());
+  const std::uint32_t persistence = kSeeker.torquer_fail_persistence_ticks;
+  for (int burst = 0; burst < 4; ++burst) {
+    rig.harness.write_status = PortStatus::kTimeout;
+    for (std::uint32_t n = 0; n + 1 < persistence; ++n) ASSERT_EQ(rig.step(), Status::kOk);
+    rig.harness.write_status = PortStatus::kOk;
+    for (std::uint32_t n = 0; n < 2 * (persistence - 1); ++n) {
+      ASSERT_EQ(rig.step(), Status::kOk);
+      EXPECT_EQ(rig.tm().flags & kTorquerWriteFailed, 0U);
+    }
+    EXPECT_EQ(rig.tm().torque_cmd, rig.gyro.torque_command()) << "the successful write is held";
+  }
+  EXPECT_EQ(rig.component.mode(), GyroMode::kCaged);
+  EXPECT_EQ(rig.tm().counters[kWriteFailed], 4U * (persistence - 1U));
+}
+
+// The same bursts with a single good write between them: an intermittent torquer cannot
+// dodge the persistence by succeeding now and then.
+TEST(ComponentFaults, WritesFailingFourInFiveLatch) {
+  FaultyRig<double> rig;
+  ASSERT_TRUE(rig.start());
+  const std::uint32_t persistence = kSeeker.torquer_fail_persistence_ticks;
+  for (int burst = 0; burst < 4 && rig.component.mode() != GyroMode::kFault; ++burst) {
+    rig.harness.write_status = PortStatus::kTimeout;
+    for (std::uint32_t n = 0; n + 1 < persistence; ++n) ASSERT_EQ(rig.step(), Status::kOk);
+    rig.harness.write_status = PortStatus::kOk;
+    ASSERT_EQ(rig.step(), Status::kOk);
+  }
+  EXPECT_EQ(rig.component.mode(), GyroMode::kFault);
+}
+
+}  // namespace component_fault_test
 }  // namespace gyro

@@ -6,12 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
 namespace gyro {
-namespace {
+namespace component_stop_protection_test {
 
 using testing::Bench;
 using testing::SeekerGyro;
@@ -48,7 +49,7 @@ struct Turn {
   Vector2<double> command;    // free-mode slew command
 };
 
-TEST(ComponentStopProtection, FreeGyroOnATurningBodyStaysOffItsStop) {
+TEST(ComponentStopProtection, FreeGyroStaysOffItsStop) {
   const Turn turns[] = {
       {{0.0, 0.5}, {0.0, 0.0}},   {{0.5, 0.0}, {0.0, 0.0}},    {{-0.6, 0.6}, {0.0, 0.0}},
       {{0.0, 0.9}, {0.0, 0.0}},   {{0.3, 0.0}, {-0.4, 0.0}},  // the command outward with the turn
@@ -69,7 +70,7 @@ TEST(ComponentStopProtection, FreeGyroOnATurningBodyStaysOffItsStop) {
   }
 }
 
-TEST(ComponentStopProtection, FreeGyroWithoutNavigationIsHeldBeyondTheCone) {
+TEST(ComponentStopProtection, HeldOffTheStopWithoutNavigation) {
   // Without navigation the body's rate is unknown: the bound still pulls the gimbal back from
   // beyond the protection cone, so it settles where the pull matches the turn.
   Sil<double> sil;
@@ -102,7 +103,7 @@ TEST(ComponentStopProtection, UncagingTorquesOnlyWhenTheBoundActs) {
   EXPECT_FALSE(sil.tm().torque_cmd.isZero()) << "held off the stop by the torquers";
 }
 
-TEST(ComponentStopProtection, BeyondAuthorityIsFlaggedBeforeContact) {
+TEST(ComponentStopProtection, BeyondAuthorityFlaggedBeforeContact) {
   for (const Vector2<double>& body : {Vector2<double>(0.0, 2.0), Vector2<double>(1.5, 0.0)}) {
     Sil<double> sil;
     ASSERT_TRUE(sil.start());
@@ -120,7 +121,7 @@ TEST(ComponentStopProtection, BeyondAuthorityIsFlaggedBeforeContact) {
 // Uncaged at 0.5 rad of pitch, beyond the 0.45 rad protection cone, with a torquer that gives
 // 0.66 rad/s where the bound asks a pull-back of 1.0: saturated, yet moving in, which is no
 // danger. With the body pitching away at 2 rad/s the same torque leaves it moving out.
-TEST(ComponentStopProtection, BeyondAuthorityOnlyWhileTheGimbalMovesOut) {
+TEST(ComponentStopProtection, BeyondAuthorityOnlyWhenMovingOut) {
   GyroComponentConfig<double> c = SeekerGyro<double>::component();
   c.max_torque = 0.05;
   c.uncage_settle_ticks = 1;
@@ -140,7 +141,7 @@ TEST(ComponentStopProtection, BeyondAuthorityOnlyWhileTheGimbalMovesOut) {
   }
 }
 
-TEST(ComponentStopProtection, CagedGyroOnATurningBodyStaysOffItsStop) {
+TEST(ComponentStopProtection, CagedGyroStaysOffItsStop) {
   Sil<double> sil;
   ASSERT_TRUE(sil.start());
   sil.body_rate = Vector2<double>(0.6, -0.6);
@@ -150,29 +151,29 @@ TEST(ComponentStopProtection, CagedGyroOnATurningBodyStaysOffItsStop) {
   EXPECT_EQ(f.flags_seen & kStopBeyondAuthority, 0u);
 }
 
-TEST(ComponentModeRequests, UncageWithoutNavigationIsRefusedAndFlagged) {
+// A slew commanded toward the stop is cut to the bound's outward rate and settles at the
+// protection cone (0.5 - 0.05 rad) instead of running into the stop; slewing back out is flown.
+TEST(ComponentStopProtection, ASlewOutwardIsHeldAtTheCone) {
   Sil<double> sil;
   ASSERT_TRUE(sil.start());
-  sil.run(100);
-  sil.nav_valid = false;
-  (void)sil.step(ModeRequest::kUncage);
-  EXPECT_EQ(sil.component.mode(), GyroMode::kCaged);
-  EXPECT_NE(sil.tm().flags & kRequestRefused, 0u);
-  EXPECT_EQ(sil.tm().counters[20], 1u);
-  (void)sil.step();
-  EXPECT_EQ(sil.tm().flags & kRequestRefused, 0u) << "a request lasts one tick";
-  EXPECT_EQ(sil.component.mode(), GyroMode::kCaged);
-  sil.nav_valid = true;
-  (void)sil.step(ModeRequest::kUncage);
-  EXPECT_EQ(sil.component.mode(), GyroMode::kUncaging);
-  EXPECT_EQ(sil.tm().flags & kRequestRefused, 0u);
-  (void)sil.step(ModeRequest::kUncage);
-  EXPECT_EQ(sil.tm().flags & kRequestRefused, 0u) << "already in effect: not refused";
-  (void)sil.step(ModeRequest::kCage);
-  EXPECT_EQ(sil.component.mode(), GyroMode::kCaged);
-  (void)sil.step(ModeRequest::kCage);
-  EXPECT_EQ(sil.tm().flags & kRequestRefused, 0u) << "already caged: not refused";
+  ASSERT_TRUE(sil.uncage());
+  sil.guidance.slew_rate_cmd_rad_s = Vector2<double>(0.8, 0.0);
+  bool protected_seen = false;
+  for (int k = 0; k < 2000 && !protected_seen; ++k) {
+    (void)sil.step();
+    protected_seen = (sil.tm().flags & kGimbalStopProtect) != 0u;
+  }
+  ASSERT_TRUE(protected_seen);
+  EXPECT_LT(sil.tm().rate_cmd_rad_s(0), 0.8) << "the outward command is cut";
+  sil.run(400);
+  EXPECT_NEAR(sil.gyro.cone_rad(), 0.45, 3e-3);
+  EXPECT_LT(std::abs(sil.tm().rate_cmd_rad_s(0)), 0.03) << "the outward rate dies away as e^(-k t), k = 20 1/s";
+  EXPECT_FALSE(sil.gyro.at_gimbal_stop());
+  // Slewing back out is allowed.
+  sil.guidance.slew_rate_cmd_rad_s = Vector2<double>(-0.3, 0.0);
+  ASSERT_EQ(sil.step(), Status::kOk);
+  EXPECT_EQ(sil.tm().rate_cmd_rad_s(0), -0.3);
 }
 
-}  // namespace
+}  // namespace component_stop_protection_test
 }  // namespace gyro

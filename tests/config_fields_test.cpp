@@ -135,7 +135,7 @@ TEST(ConfigFields, GivenTheStubAndModelTablesWHENListedTHENEveryNumberHasBothBou
   expect_bounded(stub.pickoff);
   expect_bounded(stub.torquer);
   expect_bounded(stub.faults[0]);
-  EXPECT_EQ(numbers, 5 + 11 + 6 + 20 + 5 + 2 + 4);
+  EXPECT_EQ(numbers, 5 + 11 + 6 + 21 + 5 + 2 + 4);
 }
 
 // The configurations the repository ships keep every new bound.

@@ -426,6 +426,85 @@ TEST(GimbalConventions, GivenAnyJointAnglesThenTheyAreTheProjectsGimbalAnglesOfT
   }
 }
 
+// ---- the lean right-hand side ---------------------------------------------------------------------
+
+TEST(GimbalSinCosNear, GivenIncrementsUpToItsReachThenTheLibrarysValuesToTwoUlp) {
+  int fallbacks = 0;
+  for (const double a0 : {0.0, 0.3, -0.7, 1.2, 1.5707963267948966}) {
+    const SinCosNear<double> near = SinCosNear<double>::at(a0);
+    for (double d = -0.05; d <= 0.05; d += 1.0 / 1024.0) {
+      double s = 0.0, c = 0.0;
+      near.of(a0 + d, s, c);
+      EXPECT_NEAR(s, std::sin(a0 + d), 4.5e-16) << a0 << " + " << d;
+      EXPECT_NEAR(c, std::cos(a0 + d), 4.5e-16) << a0 << " + " << d;
+      if (std::abs(d) > SinCosNear<double>::kNear) {  // beyond its reach: the library's own
+        EXPECT_EQ(s, std::sin(a0 + d));
+        ++fallbacks;
+      }
+    }
+  }
+  EXPECT_GT(fallbacks, 0);
+}
+
+TEST(GimbalWorkBookkeeping, GivenItOffThenTheSameMotionAndNoWork) {
+  Config c = seeker_gimbal_config<double>();
+  c.mass_unbalance = 1e-5;
+  BodyState<double> body;
+  body.rate_rad_s = V3(5.0, 0.2, -0.1);
+  body.specific_force = V3(0.0, 3.0, -9.8);
+  GimbalPlant<double> with = started(c, large_nutation<double>(), body);
+  GimbalPlant<double> without = with;
+  without.set_work_bookkeeping(false);
+  for (int k = 0; k < 200; ++k) {
+    ASSERT_EQ(with.step(V2(2e-3, -1e-3), body, body), Status::kOk);
+    ASSERT_EQ(without.step(V2(2e-3, -1e-3), body, body), Status::kOk);
+  }
+  EXPECT_EQ(with.gimbal_angle_rad(), without.gimbal_angle_rad());  // the powers never feed back
+  EXPECT_EQ(with.spin_rate_rad_s(), without.spin_rate_rad_s());
+  EXPECT_NE(with.work().torquer, 0.0);
+  EXPECT_NE(with.work().unbalance, 0.0);
+  EXPECT_EQ(without.work().torquer, 0.0);
+  EXPECT_EQ(without.motor_torque(), 0.0);
+}
+
+// ---- the sub-step choice ------------------------------------------------------------------------
+
+TEST(GimbalSubstepControl, GivenAFailedTryThenMoreAsTheEighthOrderAsksUpToTheBound) {
+  // Error 2^8 times the tolerance at 2 sub-steps: 4 meet it, 5 meet half of it (the safety).
+  EXPECT_EQ(substeps_after_failure(2, 256.0, 1.0, 9), 5);
+  EXPECT_EQ(substeps_after_failure(2, 1.0000001, 1.0, 9), 3);    // at least one more
+  EXPECT_EQ(substeps_after_failure(2, 1e12, 1.0, 9), 9);         // never beyond the bound
+  EXPECT_EQ(substeps_after_failure(2, kNaN, 1.0, 9), 9);         // a non-finite estimate: the bound
+  EXPECT_EQ(substeps_after_failure(2, kInf, 1.0, 9), 9);
+}
+
+TEST(GimbalSubstepControl, GivenAPassedTryThenFewerOnlyWhenHalfTheToleranceIsMet) {
+  EXPECT_EQ(substeps_after_success(4, 0.0, 1.0), 1);            // nothing to resolve
+  EXPECT_EQ(substeps_after_success(4, 0.5 / 256.0, 1.0), 2);    // 2 meet half the tolerance
+  EXPECT_EQ(substeps_after_success(4, 0.9, 1.0), 4);            // never more than the try
+  EXPECT_EQ(substeps_after_success(1, 1e-30, 1.0), 1);
+}
+
+TEST(GimbalSubstepControl, GivenATargetThenTicksTakeFewerSubStepsThanTheBoundAndRepeat) {
+  Config c = seeker_gimbal_config<double>();
+  c.error_target_rad = 5e-6;
+  BodyState<double> body;
+  body.rate_rad_s = V3(5.0, 0.2, -0.1);
+  GimbalPlant<double> a = started(c, GimbalStart<double>{V2::Zero(), V2(0.05, 0.05), 400.0}, body, 1e-3);
+  GimbalPlant<double> b = a;
+  int fewer = 0;
+  for (int k = 0; k < 300; ++k) {
+    const V2 torque = (k / 50) % 2 == 0 ? V2(2e-3, -1e-3) : V2(-2e-3, 1e-3);
+    ASSERT_EQ(a.step(torque, body, body), Status::kOk);
+    ASSERT_EQ(b.step(torque, body, body), Status::kOk);
+    EXPECT_GE(a.last_substeps(), 1);
+    EXPECT_LE(a.last_substeps(), a.substeps());
+    fewer += static_cast<int>(a.last_substeps() < a.substeps());
+  }
+  EXPECT_GT(fewer, 250);
+  EXPECT_TRUE(bit_equal(observe(a), observe(b)));  // the choice is deterministic
+}
+
 // ---- float ----------------------------------------------------------------------------------------
 
 TEST(GimbalFloat, GivenTheSeekerInFloatThenItTracksTheDoubleRunOverOneSecond) {

@@ -35,21 +35,29 @@ Case random_case(std::mt19937_64& rng, int k) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double scale = (k % 2 == 0) ? 1e-5 : 1.0;  // SI seeker-sized or report-sized (slug ft^2)
   Case c;
+  // A configuration folded by make_gimbal_parameters, as the plant does.
+  gyro::GimbalPlantConfig<double> g;
   const double j0 = scale * (2.0 + u(rng));
   const double a = j0 * (0.55 + 0.4 * (u(rng) + 1.0) / 2.0);
-  c.prm.inertia.rotor = Vector3<double>(j0, a, a);
-  c.prm.inertia.inner = moments(rng, 0.3 * scale, true);
-  c.prm.inertia.outer = moments(rng, 0.3 * scale, true);
-  c.prm.friction = Vector2<double>(0.5 + u(rng), 0.5 + u(rng)) * 20.0 * scale;
-  c.prm.coulomb = Vector2<double>(1.0 + u(rng), 1.0 + u(rng)) * 5.0 * scale;
+  g.spin_inertia = j0;
+  g.rotor_transverse_inertia = a;
+  g.inner_gimbal_inertia = moments(rng, 0.3 * scale, true);
+  g.outer_gimbal_inertia = moments(rng, 0.3 * scale, true);
+  const Vector2<double> friction = Vector2<double>(0.5 + u(rng), 0.5 + u(rng)) * 20.0 * scale;
+  g.inner_friction = friction(0);
+  g.outer_friction = friction(1);
+  const Vector2<double> coulomb = Vector2<double>(1.0 + u(rng), 1.0 + u(rng)) * 5.0 * scale;
+  g.inner_coulomb_torque = coulomb(0);
+  g.outer_coulomb_torque = coulomb(1);
   c.coulomb_scale = 0.01 * (1.5 + u(rng));
-  c.prm.inv_coulomb_scale = 1.0 / c.coulomb_scale;
+  g.coulomb_rate_scale_rad_s = c.coulomb_scale;
   const int drive = (k / 2) % 3;  // free, motor, motor with a limit it exceeds
-  c.prm.spin_drive = drive == 0 ? gyro::SpinDrive::kFree : gyro::SpinDrive::kMotor;
-  c.prm.servo_bandwidth = 20.0 * (1.0 + u(rng));
-  c.prm.spin_drag = j0 * (1.0 + u(rng));
-  c.prm.mass_unbalance = 10.0 * scale * u(rng);
-  c.prm.torquer_axes = ((k / 6) % 2 == 0) ? gyro::TorquerAxes::kGimbal : gyro::TorquerAxes::kGyro;
+  g.spin_drive = drive == 0 ? gyro::SpinDrive::kFree : gyro::SpinDrive::kMotor;
+  g.spin_servo_bandwidth_rad_s = 20.0 * (1.0 + u(rng));
+  g.spin_down_time_s = 1.0 / (1.0 + u(rng));  // drag J0 / time
+  g.mass_unbalance = 10.0 * scale * u(rng);
+  g.torquer_axes = ((k / 6) % 2 == 0) ? gyro::TorquerAxes::kGimbal : gyro::TorquerAxes::kGyro;
+  c.prm = gyro::make_gimbal_parameters(g);
   c.s.pitch_rad = 1.2 * u(rng);
   c.s.yaw_rad = 1.2 * u(rng);
   c.s.pitch_rate_rad_s = 8.0 * u(rng);

@@ -1,8 +1,10 @@
 // GyroModel's error sources, gimbal limits and small-angle flag, each against the behaviour
 // it must produce (drift rates, exponential erection, cones, flag thresholds), worked out
-// here rather than from the model's formulas.
+// here rather than from the model's formulas; a step whose drift torque is beyond the scalar
+// type is refused.
 #include "gyro/report_sample.hpp"
 #include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
+#include "support/same_bits.hpp"
 
 namespace gyro {
 namespace {
@@ -503,6 +505,32 @@ TEST(GyroSmallAngleReportSample, GivenReportSampleThenNoStepRaisesTheFlag) {
   EXPECT_LT(largest_amplitude, 0.01);
   EXPECT_LT(largest_angle, 0.01);
   EXPECT_GT(largest_amplitude, 1e-4) << "the sample does nutate";
+}
+
+// ---------------------------------------------------------------------------------------
+// An error source's torque beyond the scalar type.
+
+// A drift torque (H times the drift) that is not representable: the step is refused and the
+// model keeps its state, rather than carrying an infinite torque into it. configure() bounds
+// the drifts; the g-sensitive one still grows with the step's acceleration.
+TEST(GyroModelErrorSources, ADriftTorqueBeyondDoubleIsRefused) {
+  GyroModelConfig<double> c = ReportSample<double>::config();
+  c.errors.pitch.g_sensitive_drift_rad_s = 1.0;  // its bound: accepted by configure
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(c).ok());
+  ASSERT_EQ(g.uncage(Matrix3<double>::Identity(), Vector2<double>(0.1, -0.2)), Status::kOk);
+  GyroStepInput<double> in;
+  in.dt_s = 1e-3;
+  in.spin_hz = ReportSample<double>::kSpinHz;  // H = 1885: H * 1e306 overflows
+  in.body_accel = Vector2<double>(1e306 * c.gravity, 0.0);  // a drift of 1e306 rad/s
+  const Quaternion<double> q0 = g.attitude_gyro_to_earth();
+  const Vector2<double> rate0 = g.rate_rad_s();
+  const Status st = g.step_torque(in, Vector2<double>::Zero());
+  EXPECT_NE(st, Status::kOk);
+  std::printf("drift torque step refused: %s\n", to_string(st));
+  EXPECT_TRUE(testing::same_bits(g.attitude_gyro_to_earth().coeffs(), q0.coeffs()));
+  EXPECT_TRUE(testing::same_bits(g.rate_rad_s(), rate0));
+  EXPECT_TRUE(all_finite(g.rate_rad_s(), g.gimbal_pitch_rad(), g.gimbal_yaw_rad()));
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 //   - a rotation about a fixed axis moves the spin axis along a cone (Rodrigues' formula);
 //   - with J1 = J2 and no torque or friction the rate vector keeps its length and turns at
 //     H/J (whatever H(t) does), and without spin the axes decouple into exponentials.
+// And its transition cache: a step of a new dt is bit for bit a fresh model's step of that dt.
+#include "gyro/report_sample.hpp"
 #include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
 
 namespace gyro {
@@ -403,6 +405,32 @@ TYPED_TEST(GyroSpinDown, GivenSpinDownToZeroThroughCriticalDampingThenRatesStayF
   }
   EXPECT_GT(overdamped, 500) << "the run does cross into the overdamped regime";
   EXPECT_LT(e_prev, 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------
+// The transition cache.
+
+// A step of a new dt with the spin unchanged is the step of that dt, bit for bit what a model
+// uncaged at the same rates does in one step.
+TEST(GyroModelCache, ANewStepUsesItsOwnTransition) {
+  const GyroModelConfig<double> c = ReportSample<double>::config();
+  const Vector2<double> torque(0.3, -0.2);
+  GyroStepInput<double> in;
+  in.spin_hz = ReportSample<double>::kSpinHz;
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(c).ok());
+  ASSERT_EQ(g.uncage(Matrix3<double>::Identity(), Vector2<double>(0.05, -0.02)), Status::kOk);
+  for (const double dt : {1e-3, 3e-3, 1e-3, 2.5e-4}) {
+    SCOPED_TRACE(dt);
+    GyroModel<double> fresh;
+    ASSERT_TRUE(fresh.configure(c).ok());
+    ASSERT_EQ(fresh.uncage(Matrix3<double>::Identity(), g.rate_rad_s()), Status::kOk);
+    in.dt_s = dt;
+    ASSERT_EQ(g.step_torque(in, torque), Status::kOk);
+    ASSERT_EQ(fresh.step_torque(in, torque), Status::kOk);
+    EXPECT_EQ(g.isaf_angle_rad(), fresh.isaf_angle_rad());
+    EXPECT_EQ(g.rate_rad_s(), fresh.rate_rad_s());
+  }
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // and leaves the caller's output object bit-identical; huge-but-finite inputs report
 // kNumericalOverflow instead of producing NaN or infinity. Also the nutation amplitude:
 // the report's formula (eqs 13-15), continuity across critical damping, and that it bounds
-// the angle transient of a fine simulation in every damping regime.
+// the angle transient of a fine simulation in every damping regime, and the nutation map's
+// saturated and underflowing rotors.
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
@@ -555,6 +556,82 @@ TEST(NutationAmplitude, GivenEveryDampingRegimeWhenSimulatedFinelyThenAmplitudeB
       }
     }
   }
+}
+
+// ---- the nutation map and the steady precession's inverse ------------------------------------
+
+// A rotor whose transient map cannot be represented in T (J2/J1 of 1e300 with next to no spin
+// and no friction: A^-1 overflows): the map says so, the amplitude is the largest finite T
+// (GyroModel then raises its small-angle flag), and the one-call form refuses it untouched.
+template <typename T>
+void expect_saturated_map(const RotorParameters<T>& prm) {
+  NutationMap<T> map;
+  ASSERT_EQ(make_nutation_map(prm, map), Status::kOk);
+  EXPECT_TRUE(map.saturated);
+  EXPECT_FALSE(map.has_transient);
+  EXPECT_TRUE(map.has_steady);
+  EXPECT_EQ(map.envelope, std::numeric_limits<T>::max());
+  EXPECT_TRUE(all_finite(map.steady_from_torque, map.transient_from_rate, map.rotated_from_rate));
+  const Vector2<T> rate(T(1e-3), T(-2e-3));
+  const Vector2<T> torque(T(0), T(0));
+  const Vector2<T> amp = nutation_amplitude(map, rate, torque);
+  EXPECT_EQ(amp, Vector2<T>::Constant(std::numeric_limits<T>::max()));
+  Vector2<T> out(T(7), T(7));
+  EXPECT_EQ(nutation_amplitude(prm, rate, torque, out), Status::kNumericalOverflow);
+  EXPECT_EQ(out, Vector2<T>(T(7), T(7))) << "a refused call leaves its output as it was";
+}
+
+TEST(NutationMap, ATransientBeyondDoubleSaturates) {
+  expect_saturated_map(RotorParameters<double>{1e-150, 1e150, 0.0, 1e-161});
+}
+
+TEST(NutationMap, ATransientBeyondFloatSaturates) {
+  expect_saturated_map(RotorParameters<float>{1e-20f, 1e20f, 0.0f, 1e-22f});
+}
+
+// Friction with no spin on gimbals so heavy that omega0^2 = f^2/(J1 J2) underflows to 0 while
+// f^2 does not: a steady precession exists (w = T/f), a transient does not (as for f = H = 0).
+TEST(NutationMap, AnUnderflowingOmega0LeavesSteadyOnly) {
+  const RotorParameters<double> prm{1e200, 1e200, 1e-150, 0.0};
+  NutationMap<double> map;
+  ASSERT_EQ(make_nutation_map(prm, map), Status::kOk);
+  EXPECT_TRUE(map.has_steady);
+  EXPECT_FALSE(map.has_transient);
+  EXPECT_FALSE(map.saturated);
+  EXPECT_EQ(map.steady_from_torque(0, 0), 1e150);  // f / (f^2 + H^2) = 1/f
+  EXPECT_EQ(map.steady_from_torque(1, 0), 0.0);
+  Vector2<double> out(7.0, 7.0);
+  ASSERT_EQ(nutation_amplitude(prm, Vector2<double>(0.5, -0.25), Vector2<double>(1e-160, 0.0), out),
+            Status::kOk);
+  EXPECT_EQ(out, Vector2<double>::Zero());
+}
+
+TEST(NutationMap, BadParametersAreRefusedUntouched) {
+  NutationMap<double> map;
+  map.envelope = 42.0;
+  EXPECT_EQ(make_nutation_map(RotorParameters<double>{2.25, 2.0, -1.0, 100.0}, map), Status::kNegativeFriction);
+  EXPECT_EQ(make_nutation_map(RotorParameters<double>{0.0, 2.0, 5.0, 100.0}, map), Status::kNonPositiveInertia);
+  EXPECT_EQ(map.envelope, 42.0);
+  EXPECT_FALSE(map.has_steady);
+}
+
+TEST(TorqueForPrecessionRate, RefusesBadInputUntouched) {
+  const RotorParameters<double> rotor{2.25, 2.0, 5.0, angular_momentum(100.0, 3.0)};
+  const Vector2<double> untouched(7.0, -7.0);
+  Vector2<double> out = untouched;
+  RotorParameters<double> no_inertia = rotor;
+  no_inertia.yaw_inertia = 0.0;
+  EXPECT_EQ(torque_for_precession_rate(no_inertia, Vector2<double>(0.1, 0.2), out), Status::kNonPositiveInertia);
+  EXPECT_EQ(torque_for_precession_rate(rotor, Vector2<double>(0.1, std::nan("")), out), Status::kNonFiniteInput);
+  // H w2 beyond the largest double: not representable, refused rather than returned as inf.
+  EXPECT_EQ(torque_for_precession_rate(rotor, Vector2<double>(0.0, 1e306), out), Status::kNumericalOverflow);
+  EXPECT_EQ(out, untouched);
+  // And the accepted case is the exact inverse of the steady precession.
+  ASSERT_EQ(torque_for_precession_rate(rotor, Vector2<double>(0.1, 0.2), out), Status::kOk);
+  Vector2<double> back;
+  ASSERT_EQ(steady_precession_rate(rotor, out, back), Status::kOk);
+  EXPECT_NEAR(back(0), 0.1, 1e-15);
+  EXPECT_NEAR(back(1), 0.2, 1e-15);
 }
 
 }  // namespace

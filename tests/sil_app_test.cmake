@@ -33,6 +33,18 @@ if(MODE STREQUAL "plot")
     message(FATAL_ERROR "${csv}: ${n} lines, expected 803")
   endif()
   message(STATUS "gyro_sil wrote ${csv} and ${png} (${size} bytes); stderr:\n${err}")
+  # A fault scenario's plot (every panel, the raster, the markers): gnuplot draws it without a
+  # warning (an empty series or a datablock it cannot read would be one).
+  execute_process(COMMAND "${EXE}" "${SOURCE}/scenarios/fault_saturated_torquer.json" -o "${WORK}/fault.csv"
+                          --plot "${WORK}/fault.png" -q
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK}/fault.png")
+    message(FATAL_ERROR "gyro_sil exited with ${rc} on fault_saturated_torquer.json:\n${err}")
+  endif()
+  string(FIND "${err}" "warning" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "gnuplot warned on fault_saturated_torquer.json's plot:\n${err}")
+  endif()
 
 elseif(MODE STREQUAL "bad")
   set(bad "${SOURCE}/tests/data/bad_scenarios/missing_field.json")

@@ -297,7 +297,7 @@ TEST(SilCsv, GivenAGlobalCommaDecimalCppLocaleThenCsvScriptAndMessagesAreUnchang
   PlotRequest r;
   r.csv = "a.csv";
   r.png = "b.png";
-  r.panels.push_back({"y", {{3, "true", false, ""}}});
+  r.panels.push_back({"y", {{3, "true", false, "", false}}, {}, {}, false, 330});
   const std::string script_before = gnuplot_script(r);
 
   const std::locale old = std::locale::global(std::locale(std::locale::classic(), new CommaDecimal));
@@ -548,10 +548,10 @@ TEST(SilPlot, GivenAPathWithAQuoteThenTheScriptQuotesItForGnuplot) {
   r.csv = "/tmp/it's.csv";
   r.png = "/tmp/out.png";
   r.title = "first line\nsecond 'line'";
-  r.panels.push_back({"gimbal pitch (rad)", {{3, "true", false, ""}, {5, "measured", true, ""}}});
+  r.panels.push_back({"gimbal pitch (rad)", {{3, "true", false, "", false}, {5, "measured", true, "", false}}, {}, {}, false, 330});
   const std::string s = gnuplot_script(r);
   EXPECT_NE(s.find("'/tmp/it''s.csv' skip 1 using 1:3 with lines"), std::string::npos) << s;
-  EXPECT_NE(s.find("'' skip 1 using 1:5 with points"), std::string::npos) << s;
+  EXPECT_NE(s.find("'/tmp/it''s.csv' skip 1 using 1:5 with points"), std::string::npos) << s;
   EXPECT_NE(s.find("title 'first line' . \"\\n\" . 'second ''line'''"), std::string::npos) << s;
   EXPECT_NE(s.find("pngcairo"), std::string::npos);
   EXPECT_NE(s.find("set terminal png "), std::string::npos);  // the fallback

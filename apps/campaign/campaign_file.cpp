@@ -551,6 +551,11 @@ Criterion parse_criterion(const Fields& c, const std::vector<MetricColumn>& colu
         value_text = out.text;
         break;
       }
+      case ColumnType::kCause:
+        if (!v.is_string()) c.fail("equals", out.metric + " is a cause such as \"residual\", got " + describe_json(v));
+        out.text = v.get<std::string>();
+        value_text = out.text;
+        break;
     }
   } else {
     const char* key = c.has("max") ? "max" : "min";
@@ -678,8 +683,10 @@ std::vector<MetricColumn> metric_columns(const MetricSet& m) {
   }
   if (m.safe_mode) {
     out.push_back({"safe_mode_s", ColumnType::kNumber});
+    out.push_back({"safe_mode_cause", ColumnType::kCause});
     out.push_back({"detected", ColumnType::kBoolean});
     out.push_back({"false_alarm", ColumnType::kBoolean});
+    out.push_back({"safe_mode_after_stop", ColumnType::kBoolean});
     out.push_back({"latency_s", ColumnType::kNumber});
   }
   if (m.slew_rate_error) out.push_back({"slew_rate_error_rad_s", ColumnType::kNumber});
@@ -688,9 +695,23 @@ std::vector<MetricColumn> metric_columns(const MetricSet& m) {
   for (int bit : m.flag_counters) {
     out.push_back({"count_" + component_flag_names()[static_cast<std::size_t>(bit)], ColumnType::kNumber});
   }
-  if (m.gimbal_stop) out.push_back({"time_at_stop_s", ColumnType::kNumber});
+  if (m.gimbal_stop) {
+    out.push_back({"stop_contact_s", ColumnType::kNumber});
+    out.push_back({"time_at_stop_s", ColumnType::kNumber});
+  }
   return out;
 }
+
+namespace {
+
+// "fnv1a64:<16 hex digits>" of the text.
+std::string fingerprint_of(std::string_view text) {
+  std::array<char, 17> hex{};
+  const std::to_chars_result r = std::to_chars(hex.data(), hex.data() + 16, fnv1a64(text), 16);
+  return "fnv1a64:" + std::string(16 - static_cast<std::size_t>(r.ptr - hex.data()), '0') + std::string(hex.data(), r.ptr);
+}
+
+}  // namespace
 
 Campaign parse_campaign(std::string_view json_text, const std::string& file, const std::filesystem::path& base_dir) {
   json doc = parse_campaign_json(json_text, file);
@@ -761,11 +782,20 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
                         " bytes, more than the limit of " + std::to_string(kMaxCampaignBytes) +
                         " bytes for a campaign file (campaign.json must be readable by merge)");
   }
-  std::array<char, 17> hex{};
-  const std::to_chars_result r = std::to_chars(hex.data(), hex.data() + 16, fnv1a64(c.resolved_text), 16);
-  c.fingerprint = "fnv1a64:" + std::string(16 - static_cast<std::size_t>(r.ptr - hex.data()), '0') +
-                  std::string(hex.data(), r.ptr);
+  c.fingerprint = fingerprint_of(c.resolved_text);
   return c;
+}
+
+void keep_first_runs(Campaign& c, std::uint64_t n) {
+  if (n < 1 || n > c.runs) {
+    throw CampaignError(c.file, "runs", "the first " + std::to_string(n) + " runs: expected 1 to the campaign's " +
+                                            std::to_string(c.runs));
+  }
+  json resolved = parse_campaign_json(c.resolved_text, c.file);
+  resolved["runs"] = n;
+  c.runs = n;
+  c.resolved_text = resolved.dump(2) + "\n";
+  c.fingerprint = fingerprint_of(c.resolved_text);
 }
 
 Campaign read_campaign(const std::filesystem::path& path) {

@@ -151,8 +151,14 @@ inline constexpr std::uint64_t kMaxWeightTotal = 1'000'000;
 // to the file's directory).
 [[nodiscard]] Campaign read_campaign(const std::filesystem::path& path);
 
+// The campaign of the first `n` of c's runs (1 <= n <= c.runs): each run is the same as in
+// the whole campaign (a run depends only on the campaign's seed and its index), and
+// campaign.json, its fingerprint and the manifest say `n` runs. Throws CampaignError
+// (field "runs") otherwise.
+void keep_first_runs(Campaign& c, std::uint64_t n);
+
 // The per-run metric columns the metric set records, in order, with their kind of value.
-enum class ColumnType : std::uint8_t { kNumber, kBoolean, kMode };
+enum class ColumnType : std::uint8_t { kNumber, kBoolean, kMode, kCause };
 struct MetricColumn {
   std::string name;
   ColumnType type{ColumnType::kNumber};

@@ -1,6 +1,6 @@
 // gyro_campaign: Monte Carlo campaigns of SIL runs, from one core to a cluster.
 //
-//   gyro_campaign run CAMPAIGN.json -o DIR [-j N] [--shard I/N] [--no-plots] [--quiet]
+//   gyro_campaign run CAMPAIGN.json -o DIR [-j N] [--runs N] [--shard I/N] [--no-plots] [--quiet]
 //   gyro_campaign run CAMPAIGN.json --run K -o DIR [--no-plots]
 //   gyro_campaign merge DIR... -o DIR [--no-plots] [--quiet]
 //   mpirun -np N gyro_campaign run CAMPAIGN.json -o DIR [-j M]
@@ -30,8 +30,10 @@
 #include "plot.hpp"
 #include "printable.hpp"
 #include "progress_line.hpp"
+#include "run_plot.hpp"
 #include "run_pool.hpp"
 #include "run_table.hpp"
+#include "run_timeline.hpp"
 #include "signal_cleanup.hpp"
 #include "sil_runner.hpp"
 #include "summary.hpp"
@@ -62,6 +64,8 @@ struct Options {
   std::string shard;
   std::string run_text;
   std::optional<std::uint64_t> run;
+  std::string runs_text;
+  std::optional<std::uint64_t> runs;  // the first N runs only
   bool no_plots{false};
   bool quiet{false};
 };
@@ -201,6 +205,13 @@ std::vector<fs::path> inputs_of(const std::string& campaign_path, const Campaign
   return in;
 }
 
+// The campaign file, with --runs N applied.
+Campaign read_options_campaign(const Options& o) {
+  Campaign c = read_campaign(o.campaign);
+  if (o.runs) keep_first_runs(c, *o.runs);
+  return c;
+}
+
 // Rank 0: gathers every row of the shard (its own and the other ranks').
 std::vector<std::string> gather(gyro::campaign::Cluster& cluster, RunPool& pool, const Shard& s, const Options& o) {
   std::vector<std::string> rows(s.end - s.first);
@@ -258,7 +269,7 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
   std::string why;
   if (cluster.root()) {
     try {
-      c = read_campaign(o.campaign);
+      c = read_options_campaign(o);
       if (!parse_shard(o.shard, c.runs, why)) throw std::invalid_argument(why);
       out.emplace(o.out, inputs_of(o.campaign, c));
       out->claim(kOutputs);
@@ -308,27 +319,14 @@ int run_campaign(gyro::campaign::Cluster& cluster, const Options& o) {
   return status;
 }
 
-gyro::sil::PlotRequest run_plot(const fs::path& csv, const fs::path& png, std::uint64_t k, const RunResult& r) {
-  using gyro::sil::csv_column;
-  gyro::sil::PlotRequest p;
-  p.csv = csv;
-  p.png = png;
-  p.title = "campaign run " + std::to_string(k) + " (seed " + std::to_string(r.plan.seed) + ")";
+// The title of run K's plot: the campaign's run, its seed and its fault.
+std::string run_title(std::uint64_t k, const RunResult& r) {
+  std::string title = "campaign run " + std::to_string(k) + " (seed " + std::to_string(r.plan.seed) + ")";
   if (r.plan.fault && r.plan.fault->kind) {
-    p.title += "\n" + std::string(gyro::fault_kind_name(*r.plan.fault->kind)) + " at " +
-               format_significant(r.plan.fault->start_s, 4) + " s, axis " + std::to_string(r.plan.fault->axis);
+    title += "\n" + std::string(gyro::fault_kind_name(*r.plan.fault->kind)) + " at " +
+             format_significant(r.plan.fault->start_s, 4) + " s, axis " + std::to_string(r.plan.fault->axis);
   }
-  p.time_column = csv_column("t");
-  for (const char* axis : {"pitch", "yaw"}) {
-    const std::string a(axis);
-    p.panels.push_back({"gimbal " + a + " (rad)",
-                        {{csv_column("gimbal_" + a), "true", false, "lw 3 lc rgb '#9a9a9a'"},
-                         {csv_column("gimbal_" + a + "_meas"), "measured (accepted)", true, "lc rgb '#d62728'"},
-                         {csv_column("gimbal_" + a + "_pred"), "estimated", false, "lw 1 dt 2 lc rgb '#1f4e9c'"}}});
-  }
-  p.panels.push_back({"residual (rad)",
-                      {{csv_column("residual_pitch"), "pitch", false, ""}, {csv_column("residual_yaw"), "yaw", false, ""}}});
-  return p;
+  return title;
 }
 
 // --run K: one run alone, with its scenario, time history, plot and table row.
@@ -342,7 +340,7 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
   Campaign c;
   std::optional<OutputDir> out;
   try {
-    c = read_campaign(o.campaign);
+    c = read_options_campaign(o);
     if (k >= c.runs) {
       say("--run " + std::to_string(k) + ": the campaign has runs 0 to " + std::to_string(c.runs - 1));
       return kExitBadInput;
@@ -358,11 +356,21 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
   }
   int status = 0;
   try {
-    out->write(stem + ".json", plan_run(c, k).scenario.dump(2) + "\n");
+    const RunPlan plan = plan_run(c, k);
+    out->write(stem + ".json", plan.scenario.dump(2) + "\n");
+    // The scenario's limits and tick for the plot (a scenario refused here is refused by the run too).
+    std::optional<gyro::sil::Scenario> scenario;
+    try {
+      scenario = gyro::sil::parse_scenario_document(plan.scenario, stem + ".json");
+    } catch (const gyro::sil::ScenarioError&) {
+    }
     gyro::sil::TempFile tmp = out->temporary_for(stem + ".csv");
     gyro::sil::CsvWriter csv(tmp.stream());
     gyro::sil::CsvObserver history(csv);
-    const RunResult r = execute_run(c, k, &history);
+    gyro::sil::TimelineObserver timeline(scenario ? scenario->run.tick_s : 1.0,
+                                         scenario ? gyro::sil::timeline_resolution_s(*scenario) : 1.0);
+    gyro::sil::FanOutObserver observers({&history, &timeline});
+    const RunResult r = execute_run(c, k, &observers);
     bool written = csv.ok();
     try {
       tmp.close();
@@ -372,11 +380,12 @@ int rerun(gyro::campaign::Cluster& cluster, const Options& o) {
     const bool has_history = r.status != RunStatus::kRefused && written;
     if (has_history) out->publish(tmp, stem + ".csv");  // else removed with `tmp`
     out->write(stem + "-metrics.csv", csv_line(table_header(c)) + "\n" + format_row(c, r));
-    if (has_history && !o.no_plots) {
+    if (has_history && !o.no_plots && scenario) {
       gyro::sil::TempFile png_tmp = out->temporary_for(stem + ".png");
       png_tmp.close();  // gnuplot writes it
       try {
-        gyro::sil::plot_csv(run_plot(out->path() / (stem + ".csv"), png_tmp.path(), k, r));
+        gyro::sil::plot_csv(gyro::sil::run_plot(out->path() / (stem + ".csv"), png_tmp.path(), run_title(k, r), *scenario,
+                                                timeline.timeline()));
         out->publish(png_tmp, stem + ".png");
       } catch (const gyro::sil::PlotError& e) {
         say(std::string("plot failed: ") + e.what());  // the temporary is removed with `png_tmp`
@@ -478,6 +487,14 @@ bool check_values(const CLI::App& run, Options& o, std::string& why) {
     o.run = parse_count("--run", o.run_text, kMaxRuns - 1, why);
     if (!o.run) return false;
   }
+  if (run.count("--runs") > 0) {
+    o.runs = parse_count("--runs", o.runs_text, kMaxRuns, why);
+    if (!o.runs) return false;
+    if (*o.runs == 0) {
+      why = "--runs 0: run at least one";
+      return false;
+    }
+  }
   return true;
 }
 
@@ -501,6 +518,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   run->add_option("--shard", o.shard, "run only shard I of N (1 <= I <= N) and write it for gyro_campaign merge");
   run->add_option("--run", o.run_text, "rerun run K alone: its scenario, time history (gyro_sil CSV), plot and row");
+  run->add_option("--runs", o.runs_text,
+                  "run only the first N of the file's runs (each the same as in the whole campaign)");
   run->add_flag("--no-plots", o.no_plots, "no gnuplot plots");
   run->add_flag("-q,--quiet", o.quiet, "no progress or summary line on standard error");
   CLI::App* merge_cmd = app.add_subcommand("merge", "merge the output directories of a campaign's shards");

@@ -1,27 +1,6 @@
 #include "campaign_run.hpp"
 
-#include <vector>
-
 namespace gyro::campaign {
-
-namespace {
-
-// Shows every tick to several observers.
-class FanOut final : public sil::TickObserver {
- public:
-  explicit FanOut(std::vector<sil::TickObserver*> to) : to_(std::move(to)) {}
-  void on_start() override {
-    for (sil::TickObserver* o : to_) o->on_start();
-  }
-  void on_tick(const sil::TickRecord& r) override {
-    for (sil::TickObserver* o : to_) o->on_tick(r);
-  }
-
- private:
-  std::vector<sil::TickObserver*> to_;
-};
-
-}  // namespace
 
 const char* to_string(RunStatus s) noexcept {
   switch (s) {
@@ -45,7 +24,7 @@ RunResult execute_run(const Campaign& c, std::uint64_t index, sil::TickObserver*
     return r;
   }
   MetricsObserver metrics(s, c.metrics);
-  FanOut fan({&metrics, also});
+  sil::FanOutObserver fan({&metrics, also});
   sil::RunOptions quiet;
   quiet.progress = false;
   try {

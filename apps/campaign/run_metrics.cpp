@@ -5,6 +5,23 @@
 
 namespace gyro::campaign {
 
+std::string safe_mode_cause(std::uint32_t flags) {
+  struct Monitor {
+    std::uint32_t flags;
+    const char* name;
+  };
+  constexpr Monitor kMonitors[] = {{kResidualFault, "residual"},
+                                   {kPickoffInvalid | kPickoffStale | kPickoffJump, "pickoff"},
+                                   {kSpinLow, "spin"},
+                                   {kInputFault, "input"},
+                                   {kTorquerWriteFailed, "torquer"}};
+  std::string out;
+  for (const Monitor& m : kMonitors) {
+    if ((flags & m.flags) != 0u) out += (out.empty() ? "" : "+") + std::string(m.name);
+  }
+  return out.empty() ? "other" : out;
+}
+
 MetricsObserver::MetricsObserver(const sil::Scenario& s, const MetricSet& m)
     : tick_s_(s.run.tick_s),
       slew_window_(ticks_of(m.slew_rate_error, s.run.tick_s)),
@@ -35,7 +52,11 @@ void MetricsObserver::on_tick(const sil::TickRecord& r) {
   m_.max_cone_rad = std::max(m_.max_cone_rad, r.cone_true_rad);
   if (healthy && last_gimbal_rad_) raise(m_.max_gimbal_step_rad, (r.gimbal_true_rad - *last_gimbal_rad_).cwiseAbs().maxCoeff());
   last_gimbal_rad_ = r.gimbal_true_rad;
-  if (r.mode == GyroMode::kFault && !safe_tick_) safe_tick_ = r.tick;
+  if (r.at_gimbal_stop && !stop_tick_) stop_tick_ = r.tick;
+  if (r.mode == GyroMode::kFault && !safe_tick_) {
+    safe_tick_ = r.tick;
+    m_.safe_mode_cause = safe_mode_cause(r.flags);
+  }
   const auto within = [&](const std::optional<TickWindow>& w) { return w && r.tick >= w->from && r.tick <= w->to; };
   if (free && within(slew_window_)) {
     slew_error_sum_ += r.rate_true_rad_s - r.slew_cmd_rad_s;
@@ -57,7 +78,11 @@ RunMetrics MetricsObserver::finish(const sil::RunSummary& summary) const {
   if (slew_ticks_ > 0) {
     out.slew_rate_error_rad_s = (slew_error_sum_ / static_cast<double>(slew_ticks_)).cwiseAbs().maxCoeff();
   }
-  out.false_alarm = safe_tick_ && (!fault_tick_ || *safe_tick_ < *fault_tick_);
+  const bool before_fault = safe_tick_ && (!fault_tick_ || *safe_tick_ < *fault_tick_);
+  const bool after_stop = stop_tick_ && safe_tick_ && *stop_tick_ <= *safe_tick_;
+  out.false_alarm = before_fault && !after_stop;
+  out.safe_mode_after_stop = before_fault && after_stop;
+  if (stop_tick_) out.stop_contact_s = static_cast<double>(*stop_tick_) * tick_s_;
   out.final_mode = summary.final_mode;
   out.counters = summary.counters;
   out.time_at_stop_s = static_cast<double>(stop_ticks_) * tick_s_;

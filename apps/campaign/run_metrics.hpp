@@ -10,19 +10,24 @@
 //   envelope         the largest true cone over the run, and the largest change of a true
 //                    gimbal angle in one tick before the fault start (for max_pickoff_step_rad)
 //   safe mode        the first tick in mode fault; detected = at or after the fault start;
-//                    false alarm = before it (or in a run without a fault); latency =
-//                    safe mode - fault start when detected
+//                    latency = safe mode - fault start when detected; before the fault start
+//                    (or in a run without a fault): a false alarm, unless the gimbal had met
+//                    its stop by then (safe mode after stop contact: counted on its own)
+//   safe-mode cause  the monitors that latched it, from the flags of its first tick:
+//                    residual, pickoff (readings unusable), spin, input, torquer
 //   slew-rate error  the mean of (true precession rate - guidance's slew command) over the
 //                    window's ticks in mode free, the larger magnitude of the two axes (the
 //                    mean: a slew's accuracy, not the nutation riding on it)
 //   pointing error   the largest |the component's estimate of the gimbal angles - the true
 //                    angles| (either axis) over ticks in mode free within the window
-//   final mode, flag counters (the component's, at the end), time at the gimbal stop
+//   final mode, flag counters (the component's, at the end), the first stop contact and
+//   the time at the gimbal stop
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "campaign_file.hpp"
 #include "gyro/persistence.hpp"
@@ -37,15 +42,22 @@ struct RunMetrics {
   double max_cone_rad{0};
   std::optional<double> max_gimbal_step_rad;
   std::optional<double> safe_mode_s;
+  std::string safe_mode_cause;       // "residual", "pickoff+spin", ...; empty without safe mode
   std::optional<bool> detected;      // runs with a fault only
   bool false_alarm{false};
+  bool safe_mode_after_stop{false};  // before the fault (or without one), after stop contact
   std::optional<double> latency_s;
   std::optional<double> slew_rate_error_rad_s;
   std::optional<double> max_pointing_error_rad;
   GyroMode final_mode{GyroMode::kIdle};
   std::array<std::uint32_t, kComponentFlagCount> counters{};
+  std::optional<double> stop_contact_s;  // the first tick on the stop
   double time_at_stop_s{0};
 };
+
+// The monitors that latched safe mode, named from the component's flags of that tick
+// ("residual", "pickoff", "spin", "input", "torquer", joined by '+'; "other" for none).
+[[nodiscard]] std::string safe_mode_cause(std::uint32_t flags);
 
 class MetricsObserver final : public sil::TickObserver {
  public:
@@ -65,6 +77,7 @@ class MetricsObserver final : public sil::TickObserver {
   std::optional<std::uint64_t> fault_tick_;
   std::optional<TickWindow> slew_window_, pointing_window_;
   std::optional<std::uint64_t> safe_tick_;
+  std::optional<std::uint64_t> stop_tick_;
   Eigen::Vector2d slew_error_sum_{Eigen::Vector2d::Zero()};
   std::uint64_t slew_ticks_{0};
   std::uint64_t stop_ticks_{0};

@@ -39,17 +39,22 @@ std::vector<std::string> metric_cells(const Campaign& c, const RunResult& r) {
   }
   if (ms.safe_mode) {
     out.push_back(m ? optional_cell(m->safe_mode_s) : "");
+    out.push_back(m ? m->safe_mode_cause : "");
     out.push_back(m && m->detected ? bool_cell(*m->detected) : "");
     out.push_back(m ? bool_cell(m->false_alarm) : "");
+    out.push_back(m ? bool_cell(m->safe_mode_after_stop) : "");
     out.push_back(m ? optional_cell(m->latency_s) : "");
   }
   if (ms.slew_rate_error) out.push_back(m ? optional_cell(m->slew_rate_error_rad_s) : "");
   if (ms.pointing_error) out.push_back(m ? optional_cell(m->max_pointing_error_rad) : "");
-  if (ms.final_mode) out.push_back(m ? gyro::enum_name(m->final_mode) : "");
+  if (ms.final_mode) out.push_back(m ? gyro::enum_name_or(m->final_mode, "?") : "");
   for (int bit : ms.flag_counters) {
     out.push_back(m ? std::to_string(m->counters[static_cast<std::size_t>(bit)]) : "");
   }
-  if (ms.gimbal_stop) out.push_back(m ? number_cell(m->time_at_stop_s) : "");
+  if (ms.gimbal_stop) {
+    out.push_back(m ? optional_cell(m->stop_contact_s) : "");
+    out.push_back(m ? number_cell(m->time_at_stop_s) : "");
+  }
   return out;
 }
 

@@ -49,13 +49,25 @@ std::vector<double> values(const RunTable& t, std::size_t col, Pred&& keep) {
 // Columns by name (present in every table of this campaign).
 struct Cols {
   std::size_t run, seed, status, pass, failed, reason;
-  std::optional<std::size_t> fault_kind;
+  std::optional<std::size_t> fault_kind, fault_start, safe_mode, cause, detected, latency, stop_contact, final_mode;
 };
 
 Cols columns_of(const RunTable& t) {
-  Cols c{*t.column("run"), *t.column("seed"), *t.column("status"), *t.column("pass"), *t.column("failed"),
-         *t.column("reason"), t.column("fault_kind")};
+  Cols c{*t.column("run"),          *t.column("seed"),           *t.column("status"),
+         *t.column("pass"),         *t.column("failed"),         *t.column("reason"),
+         t.column("fault_kind"),    t.column("fault_start_s"),   t.column("safe_mode_s"),
+         t.column("safe_mode_cause"), t.column("detected"),      t.column("latency_s"),
+         t.column("stop_contact_s"), t.column("final_mode")};
   return c;
+}
+
+// A cell of an optional column; "" when the table has no such column.
+std::string_view cell_of(const RunTable::Row& row, const std::optional<std::size_t>& col) {
+  return col ? row[*col] : std::string_view();
+}
+
+std::string_view kind_of(const RunTable::Row& row, const Cols& k) {
+  return k.fault_kind ? row[*k.fault_kind] : std::string_view("none");
 }
 
 // The fault kinds in the order the campaign lists them (each once; "none" included).
@@ -89,21 +101,47 @@ void header_section(const Campaign& c, const RunTable& t, std::string& md) {
         "`gyro_campaign run campaign.json --run K -o DIR`. Rates are given with 95 % Wilson score intervals.\n\n";
 }
 
-void outcome_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
-  std::uint64_t passed = 0, refused = 0, errors = 0;
+// The outcome of the runs `keep` selects: passed, failed a criterion, refused, error.
+struct Outcome {
+  std::uint64_t runs{0}, passed{0}, refused{0}, errors{0};
+  [[nodiscard]] std::uint64_t failed() const { return runs - passed - refused - errors; }
+};
+
+template <typename Pred>
+Outcome outcome_of(const RunTable& t, const Cols& k, Pred&& keep) {
+  Outcome o;
   for (std::size_t i = 0; i < t.size(); ++i) {
     const RunTable::Row row = t.row(i);
-    if (row[k.pass] == "true") ++passed;
-    if (row[k.status] == "refused") ++refused;
-    if (row[k.status] == "error") ++errors;
+    if (!keep(row)) continue;
+    ++o.runs;
+    if (row[k.pass] == "true") ++o.passed;
+    if (row[k.status] == "refused") ++o.refused;
+    if (row[k.status] == "error") ++o.errors;
   }
-  const std::uint64_t n = t.size();
-  const std::uint64_t failed = n - passed - refused - errors;
-  md += "## Outcome\n\n| outcome | runs | rate | 95 % interval |\n|---|--:|--:|---|\n";
-  md += "| passed | " + std::to_string(passed) + " | " + rate_cells(passed, n) + " |\n";
-  md += "| failed a criterion | " + std::to_string(failed) + " | " + rate_cells(failed, n) + " |\n";
-  md += "| refused: the dispersed scenario is invalid | " + std::to_string(refused) + " | " + rate_cells(refused, n) + " |\n";
-  md += "| error: the loop failed | " + std::to_string(errors) + " | " + rate_cells(errors, n) + " |\n\n";
+  return o;
+}
+
+void outcome_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
+  md += "## Outcome\n\n";
+  const Outcome all = outcome_of(t, k, [](const RunTable::Row&) { return true; });
+  const std::uint64_t n = all.runs;
+  md += "| outcome | runs | rate | 95 % interval |\n|---|--:|--:|---|\n";
+  md += "| passed | " + std::to_string(all.passed) + " | " + rate_cells(all.passed, n) + " |\n";
+  md += "| failed a criterion | " + std::to_string(all.failed()) + " | " + rate_cells(all.failed(), n) + " |\n";
+  md += "| refused: the dispersed scenario is invalid | " + std::to_string(all.refused) + " | " +
+        rate_cells(all.refused, n) + " |\n";
+  md += "| error: the loop failed | " + std::to_string(all.errors) + " | " + rate_cells(all.errors, n) + " |\n\n";
+  if (k.fault_kind) {
+    md += "By the fault injected:\n\n| fault | runs | passed | failed a criterion | refused | error | pass rate | "
+          "95 % interval |\n|---|--:|--:|--:|--:|--:|--:|---|\n";
+    for (const std::string& kind : kinds_of(c)) {
+      const Outcome o = outcome_of(t, k, [&](const RunTable::Row& row) { return kind_of(row, k) == kind; });
+      md += "| " + (kind == "none" ? std::string("none (fault-free)") : kind) + " | " + std::to_string(o.runs) + " | " +
+            std::to_string(o.passed) + " | " + std::to_string(o.failed()) + " | " + std::to_string(o.refused) + " | " +
+            std::to_string(o.errors) + " | " + rate_cells(o.passed, o.runs) + " |\n";
+    }
+    md += "\n";
+  }
   if (c.criteria.empty()) md += "The campaign sets no criteria: a run passes when it runs.\n\n";
 }
 
@@ -118,7 +156,7 @@ void criteria_section(const Campaign& c, const RunTable& t, const Cols& k, std::
     for (std::size_t i = 0; i < t.size(); ++i) {
       const RunTable::Row row = t.row(i);
       if (row[k.status] != "ok") continue;
-      const std::string_view kind = k.fault_kind ? row[*k.fault_kind] : std::string_view("none");
+      const std::string_view kind = kind_of(row, k);
       bool in = true;
       switch (cr.scope) {
         case RunScope::kAll: break;
@@ -142,65 +180,97 @@ void criteria_section(const Campaign& c, const RunTable& t, const Cols& k, std::
   md += "\nRuns refused or in error are not judged (they count as failed in the outcome).\n\n";
 }
 
+// "residual 140, pickoff 10": how often each cause latched safe mode among the rows.
+template <typename Pred>
+std::string cause_counts(const RunTable& t, const Cols& k, Pred&& keep) {
+  if (!k.cause) return "–";
+  std::map<std::string, std::uint64_t> counts;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const RunTable::Row row = t.row(i);
+    if (keep(row) && !row[*k.cause].empty()) ++counts[std::string(row[*k.cause])];
+  }
+  std::vector<std::pair<std::string, std::uint64_t>> sorted(counts.begin(), counts.end());
+  std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string out;
+  for (const auto& [cause, n] : sorted) out += (out.empty() ? "" : ", ") + cause + " " + std::to_string(n);
+  return out.empty() ? "–" : out;
+}
+
 void detection_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
   if (!c.faults || !c.metrics.safe_mode || !k.fault_kind) return;
   const std::size_t detected = *t.column("detected"), false_alarm = *t.column("false_alarm"),
-                    latency = *t.column("latency_s");
-  md += "## Fault detection\n\nSafe mode reached at or after the fault's start (detection), or before it (false alarm;\n"
-        "any safe mode in a run without a fault). Latency: from the fault's start to safe mode.\n\n";
+                    after_stop = *t.column("safe_mode_after_stop"), latency = *t.column("latency_s");
+  md += "## Fault detection\n\nDetection: safe mode reached at or after the fault's start; latency from the fault's\n"
+        "start to safe mode. Safe mode before the fault's start (or in a run without a fault) is a false alarm,\n"
+        "unless the gimbal had met its stop by then: that is counted on its own (\"after stop contact\"), as the\n"
+        "body's motion, not the monitors, is what went wrong. \"Latched by\": the monitors whose flags were raised\n"
+        "on the first tick in safe mode, over the kind's runs that reached it.\n\n";
   md += "| fault | runs | detected | detection rate | 95 % interval | false alarms | false-alarm rate | 95 % interval | "
-        "latency p50 (ms) | p95 | p99 | max |\n|---|--:|--:|--:|---|--:|--:|---|--:|--:|--:|--:|\n";
+        "after stop contact | latency p50 (ms) | p95 | p99 | max | latched by |\n"
+        "|---|--:|--:|--:|---|--:|--:|---|--:|--:|--:|--:|--:|---|\n";
   for (const std::string& kind : kinds_of(c)) {
-    const auto of_kind = [&](const RunTable::Row& row) {
-      return row[*k.fault_kind] == kind && row[k.status] == "ok";
-    };
-    std::uint64_t n = 0, det = 0, fa = 0;
+    const auto of_kind = [&](const RunTable::Row& row) { return kind_of(row, k) == kind && row[k.status] == "ok"; };
+    std::uint64_t n = 0, det = 0, fa = 0, stop = 0;
     for (std::size_t i = 0; i < t.size(); ++i) {
       const RunTable::Row row = t.row(i);
       if (!of_kind(row)) continue;
       ++n;
       det += row[detected] == "true" ? 1u : 0u;
       fa += row[false_alarm] == "true" ? 1u : 0u;
+      stop += row[after_stop] == "true" ? 1u : 0u;
     }
     std::vector<double> lat = values(t, latency, of_kind);
     for (double& v : lat) v *= 1e3;
     const bool faulted = kind != "none";
     md += "| " + kind + " | " + std::to_string(n) + " | " + (faulted ? std::to_string(det) : "–") + " | " +
           (faulted ? rate_cells(det, n) : "– | –") + " | " + std::to_string(fa) + " | " + rate_cells(fa, n) + " | " +
+          std::to_string(stop) + " | " +
           (faulted ? num(percentile(lat, 0.5)) + " | " + num(percentile(lat, 0.95)) + " | " + num(percentile(lat, 0.99)) +
                          " | " + num(lat.empty() ? kNoValue : lat.back())
                    : "– | – | – | –") +
-          " |\n";
+          " | " + cause_counts(t, k, of_kind) + " |\n";
   }
   md += "\n";
+}
+
+// One row of the metrics table: the metric over the runs `keep` selects.
+template <typename Pred>
+std::string metric_row(const RunTable& t, const MetricColumn& m, const std::string& label, Pred&& keep) {
+  const std::size_t col = *t.column(m.name);
+  if (m.type == ColumnType::kNumber) {
+    const std::vector<double> v = values(t, col, keep);
+    return "| " + label + " | " + std::to_string(v.size()) + " | " + num(v.empty() ? kNoValue : v.front()) + " | " +
+           num(percentile(v, 0.05)) + " | " + num(percentile(v, 0.5)) + " | " + num(percentile(v, 0.95)) + " | " +
+           num(percentile(v, 0.99)) + " | " + num(v.empty() ? kNoValue : v.back()) + " |\n";
+  }
+  std::map<std::string, std::uint64_t> counts;
+  std::uint64_t n = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const RunTable::Row row = t.row(i);
+    if (!keep(row) || row[col].empty()) continue;
+    ++counts[std::string(row[col])];
+    ++n;
+  }
+  std::string text;
+  for (const auto& [value, count] : counts) text += (text.empty() ? "" : ", ") + value + ": " + std::to_string(count);
+  return "| " + label + " | " + std::to_string(n) + " | " + text + " | | | | | |\n";
 }
 
 void metrics_section(const Campaign& c, const RunTable& t, const Cols& k, std::string& md) {
   const std::vector<MetricColumn> cols = metric_columns(c.metrics);
   if (cols.empty()) return;
-  md += "## Metrics\n\nOver the runs that ran (status ok) and have a value.\n\n"
-        "| metric | runs with a value | min | p5 | p50 | p95 | p99 | max |\n|---|--:|--:|--:|--:|--:|--:|--:|\n";
+  const bool split = k.fault_kind.has_value();
+  md += std::string("## Metrics\n\nOver the runs that ran (status ok) and have a value") +
+        (split ? ", the runs without a fault and those with one apart" : "") +
+        ".\n\n| metric | runs with a value | min | p5 | p50 | p95 | p99 | max |\n|---|--:|--:|--:|--:|--:|--:|--:|\n";
   const auto ran = [&](const RunTable::Row& row) { return row[k.status] == "ok"; };
   for (const MetricColumn& m : cols) {
-    const std::size_t col = *t.column(m.name);
-    if (m.type == ColumnType::kNumber) {
-      const std::vector<double> v = values(t, col, ran);
-      md += "| " + m.name + " | " + std::to_string(v.size()) + " | " + num(v.empty() ? kNoValue : v.front()) + " | " +
-            num(percentile(v, 0.05)) + " | " + num(percentile(v, 0.5)) + " | " + num(percentile(v, 0.95)) + " | " +
-            num(percentile(v, 0.99)) + " | " + num(v.empty() ? kNoValue : v.back()) + " |\n";
-    } else {
-      std::map<std::string, std::uint64_t> counts;
-      std::uint64_t n = 0;
-      for (std::size_t i = 0; i < t.size(); ++i) {
-        const RunTable::Row row = t.row(i);
-        if (!ran(row) || row[col].empty()) continue;
-        ++counts[std::string(row[col])];
-        ++n;
-      }
-      std::string text;
-      for (const auto& [value, count] : counts) text += (text.empty() ? "" : ", ") + value + ": " + std::to_string(count);
-      md += "| " + m.name + " | " + std::to_string(n) + " | " + text + " | | | | | |\n";
+    if (!split) {
+      md += metric_row(t, m, m.name, ran);
+      continue;
     }
+    md += metric_row(t, m, m.name + " (fault-free)", [&](const RunTable::Row& row) { return ran(row) && kind_of(row, k) == "none"; });
+    md += metric_row(t, m, m.name + " (faulted)", [&](const RunTable::Row& row) { return ran(row) && kind_of(row, k) != "none"; });
   }
   md += "\n";
 }
@@ -230,6 +300,44 @@ void dispersion_section(const Campaign& c, const RunTable& t, std::string& md) {
   md += "\n";
 }
 
+// The likeliest cause of a run's failure, read off its row: a refusal or an error as its
+// reason; else what happened in time order: the gimbal on its stop, safe mode and the monitors
+// that latched it, a fault not detected or detected late, the final mode.
+struct Cause {
+  std::string category;  // "stop contact", "residual", "pickoff", "spin", "input", ...
+  std::string text;
+};
+
+Cause likely_cause(const RunTable& t, std::size_t i, const Cols& k) {
+  const RunTable::Row row = t.row(i);
+  if (row[k.status] != "ok") return {std::string(row[k.status]), t.text(i, k.reason)};
+  const std::optional<double> stop = cell_number(cell_of(row, k.stop_contact));
+  const std::optional<double> safe = cell_number(cell_of(row, k.safe_mode));
+  const std::optional<double> fault = cell_number(cell_of(row, k.fault_start));
+  const std::string cause(cell_of(row, k.cause));
+  Cause out;
+  const auto add = [&out](const std::string& part) { out.text += (out.text.empty() ? "" : "; ") + part; };
+  // The stop is the cause when the gimbal met it before safe mode and before any fault did.
+  if (stop && (!safe || *stop <= *safe)) {
+    if (!fault || *stop < *fault) out.category = "stop contact";
+    add("stop contact at " + num(*stop) + " s");
+  }
+  if (safe) {
+    const bool before = !fault || *safe < *fault;
+    if (out.category.empty()) out.category = before ? cause : "late detection";
+    add(std::string(before ? "safe mode" : "detected") + " at " + num(*safe) + " s by " + cause +
+        (before && fault ? ", before the fault (" + num(*fault) + " s)" : ""));
+    if (!before) add("latency " + num(1e3 * (*safe - *fault)) + " ms");
+  } else if (fault) {
+    if (out.category.empty()) out.category = "not detected";
+    add("fault at " + num(*fault) + " s not detected");
+  }
+  if (out.category.empty()) out.category = "other";
+  if (k.final_mode && !safe) add("ended " + std::string(row[*k.final_mode]));
+  if (out.text.empty()) out.text = t.text(i, k.reason);
+  return out;
+}
+
 void failures_section(const RunTable& t, const Cols& k, std::string& md) {
   std::vector<std::size_t> failed;
   for (std::size_t i = 0; i < t.size(); ++i) {
@@ -241,15 +349,25 @@ void failures_section(const RunTable& t, const Cols& k, std::string& md) {
     md += "None.\n\n";
     return;
   }
-  md += std::to_string(failed.size()) + " runs did not pass";
-  if (failed.size() > kListedFailures) md += " (the first " + std::to_string(kListedFailures) + " below; all in runs.csv)";
-  md += ".\n\n| run | seed | fault | status | why |\n|--:|--:|---|---|---|\n";
+  std::map<std::string, std::uint64_t> by_cause;
+  for (std::size_t i : failed) ++by_cause[likely_cause(t, i, k).category];
+  md += std::to_string(failed.size()) + " runs did not pass. By likely cause: ";
+  std::string list;
+  for (const auto& [cause, n] : by_cause) list += (list.empty() ? "" : ", ") + cause + " " + std::to_string(n);
+  md += list + ".";
+  if (failed.size() > kListedFailures) md += " The first " + std::to_string(kListedFailures) + " below; all in runs.csv.";
+  md += "\n\n| run | seed | fault | status | likely cause | what happened | criteria failed |\n"
+        "|--:|--:|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < failed.size() && i < kListedFailures; ++i) {
     const RunTable::Row row = t.row(failed[i]);
-    std::string why = t.text(failed[i], k.reason);
-    std::replace(why.begin(), why.end(), '|', '/');
+    const Cause cause = likely_cause(t, failed[i], k);
+    std::string what = cause.text;
+    std::string criteria = t.text(failed[i], k.reason);
+    std::replace(what.begin(), what.end(), '|', '/');
+    std::replace(criteria.begin(), criteria.end(), '|', '/');
     md += "| " + std::string(row[k.run]) + " | " + std::string(row[k.seed]) + " | " +
-          std::string(k.fault_kind ? row[*k.fault_kind] : "–") + " | " + std::string(row[k.status]) + " | " + why + " |\n";
+          std::string(k.fault_kind ? row[*k.fault_kind] : "–") + " | " + std::string(row[k.status]) + " | " +
+          cause.category + " | " + what + " | " + (row[k.status] == "ok" ? criteria : "–") + " |\n";
   }
   md += "\n";
 }

@@ -99,7 +99,7 @@ int main() {
   const bool nominal = tm.mode == gyro::GyroMode::kFree && tm.flags == 0U;
   gyro_fw::Line() << "stack configure " << static_cast<unsigned long>(init_stack) << '\n';
   gyro_fw::Line() << "stack tick " << static_cast<unsigned long>(tick_stack) << '\n';
-  gyro_fw::Line() << "mode " << gyro::enum_name(tm.mode) << " flags " << static_cast<unsigned long>(tm.flags)
+  gyro_fw::Line() << "mode " << gyro::enum_name_or(tm.mode, "?") << " flags " << static_cast<unsigned long>(tm.flags)
                   << '\n';
   return failures == 0 && nominal ? 0 : 1;
 }

@@ -3,24 +3,34 @@
 Exact dynamics:   RotorParameters, make_transition, advance, propagate (one state or an
                   (n, 4) batch of states (theta, psi, theta', psi')), compute_modes.
 Models:           GyroModel / GyroModelF32, GimbalPlant / GimbalPlantF32 (float64 / float32).
+Flight loop:      SimulatedGyro, GyroComponent, SilLoop (and their F32 twins): the component
+                  closed around a body and a guidance of one's own.
 Runs:             run_sil (a scenario file or dict -> SilRun), run_campaign (-> CampaignRun).
+Examples:         examples.seeker(), examples.report(): the example gyros' configurations,
+                  as each constructor takes them.
 Report sample:    report_sample.run() (figures A-1, A-2 of the report).
 Refusals:         ConfigError (.field), StatusError (.status), ScenarioError (.field, .file).
 
 See docs/python.md.
 """
 
-from . import errors, report_sample
+from . import errors, examples, report_sample
 from ._gyro import (
     DEFAULT_MAX_OUTPUT_BYTES,
     FLAG_GIMBAL_LIMIT,
     FLAG_SMALL_ANGLE,
     GimbalPlant,
     GimbalPlantF32,
+    GyroComponent,
+    GyroComponentF32,
     GyroModel,
     GyroModelF32,
     MAX_THREADS,
     RotorParameters,
+    SilLoop,
+    SilLoopF32,
+    SimulatedGyro,
+    SimulatedGyroF32,
     Status,
     Transition,
     TransitionF32,
@@ -41,11 +51,12 @@ from .errors import ConfigError, GyroError, RunError, ScenarioError, StatusError
 from .results import CampaignRun, SilRun
 
 __all__ = [
-    "DEFAULT_MAX_OUTPUT_BYTES", "MAX_THREADS", "FLAG_GIMBAL_LIMIT", "FLAG_SMALL_ANGLE", "GimbalPlant", "GimbalPlantF32", "GyroModel", "GyroModelF32",
+    "DEFAULT_MAX_OUTPUT_BYTES", "MAX_THREADS", "FLAG_GIMBAL_LIMIT", "FLAG_SMALL_ANGLE", "GimbalPlant", "GimbalPlantF32", "GyroComponent", "GyroComponentF32", "GyroModel", "GyroModelF32",
+    "SilLoop", "SilLoopF32", "SimulatedGyro", "SimulatedGyroF32",
     "RotorParameters", "Status", "Transition", "TransitionF32", "advance", "angular_momentum",
     "component_flag_names", "compute_modes", "frame_rotation_y", "frame_rotation_z", "make_transition",
     "propagate", "sil_columns", "status_text", "steady_precession_rate", "run_sil", "run_campaign",
-    "ConfigError", "GyroError", "RunError", "ScenarioError", "StatusError", "CampaignRun", "SilRun", "errors", "report_sample",
+    "ConfigError", "GyroError", "RunError", "ScenarioError", "StatusError", "CampaignRun", "SilRun", "errors", "examples", "report_sample",
 ]
 
 

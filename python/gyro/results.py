@@ -37,9 +37,10 @@ class CampaignRun:
     """A campaign's per-run table (gyro_campaign's runs.csv), column by column.
 
     columns: name -> run and seed as uint64 arrays (exact: a seed has 64 bits); the verdicts
-    (pass, detected, false_alarm) as lists of bool, None where a run has no verdict (it was
-    refused, or has no fault to detect); other numbers as float64 arrays (NaN where a cell is
-    empty); anything else (status, fault_kind, final_mode, reason, ...) as lists of str.
+    (pass, detected, false_alarm, safe_mode_after_stop) as lists of bool, None where a run has
+    no verdict (it was refused, or has no fault to detect); other numbers as float64 arrays
+    (NaN where a cell is empty); anything else (status, fault_kind, final_mode,
+    safe_mode_cause, reason, ...) as lists of str.
     header: the column names in order.
     """
 

@@ -157,7 +157,7 @@ py::tuple run_campaign(const py::object& source, const py::object& runs_arg, con
         throw py::value_error("runs: expected a whole number from 1 to the campaign's run count " +
                               std::to_string(c.runs) + ", got " + std::to_string(*runs));
       }
-      c.runs = *runs;  // the first runs: each run's row depends only on (campaign, index)
+      campaign::keep_first_runs(c, *runs);  // each run's row depends only on (campaign, index)
     }
     std::optional<campaign::RunTable> table;
     {

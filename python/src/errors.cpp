@@ -22,8 +22,11 @@ void raise_config_error(const std::string& field, const std::string& reason, Sta
 }
 
 void raise_if_refused(const ConfigCheck& c, const char* who) {
+  raise_if_refused(c, who, c.field != nullptr ? c.field : "(unnamed)");
+}
+
+void raise_if_refused(const ConfigCheck& c, const char* who, const std::string& field) {
   if (c.ok()) return;
-  const std::string field = c.field != nullptr ? c.field : "(unnamed)";
   std::string reason = to_string(c.status);
   if (c.relation != Relation::kNone || c.rule != nullptr) {
     char buf[512];

@@ -14,6 +14,8 @@ namespace gyro::python {
 // Raises gyro.ConfigError(message, field, status) when `c` is a refusal; `who` prefixes the
 // message ("GyroModel.configure").
 void raise_if_refused(const ConfigCheck& c, const char* who);
+// The same with the field named `field` (as the caller's input names it).
+void raise_if_refused(const ConfigCheck& c, const char* who, const std::string& field);
 // Raises gyro.StatusError(message, status) unless `s` is kOk (or kInputIgnored when
 // `ignored_ok`).
 void raise_if_failed(Status s, const std::string& what, bool ignored_ok = false);

@@ -9,6 +9,8 @@ PYBIND11_MODULE(_gyro, m) {
   gyro::python::bind_exact_dynamics(m);
   gyro::python::bind_gyro_model(m);
   gyro::python::bind_gimbal_plant(m);
+  gyro::python::bind_flight_loop(m);
+  gyro::python::bind_examples(m);
   gyro::python::bind_sil_run(m);
   gyro::python::bind_campaign_run(m);
 }

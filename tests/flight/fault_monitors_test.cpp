@@ -5,7 +5,7 @@
 #include "gyro/fault_monitors.hpp"
 
 namespace gyro {
-namespace {
+namespace fault_monitors_test {
 
 const Vector2<double> kOver(0.0, -2e-3);  // beyond a limit of 1e-3 rad in one axis
 
@@ -95,5 +95,5 @@ TEST(FaultMonitors, AGoodWriteClearsTheTorquerCondition) {
   EXPECT_FALSE(m.update(FaultConditions{}, p).fault) << "the fill drains";
 }
 
-}  // namespace
+}  // namespace fault_monitors_test
 }  // namespace gyro

@@ -2,6 +2,7 @@
 // with the last one held, navigation used only when marked valid and usable.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "gyro/guidance_gate.hpp"
@@ -69,8 +70,10 @@ TEST(GuidanceGate, NavigationMarkedInvalidIsNoRejectedCommand) {
 TEST(GuidanceGate, NavigationMarkedValidButUnusableIsRejected) {
   GuidanceInput<double> not_rotation = with_nav(Vector3<double>::Zero());
   not_rotation.R_earth_to_body(0, 0) = 1.5;
+  const double just_beyond = std::nextafter(kMaxBodyRate, 1e3);
   for (const GuidanceInput<double>& in :
-       {with_nav(Vector3<double>(0, kNaN, 0)), with_nav(Vector3<double>(0, 0, 4.0000001)), not_rotation}) {
+       {with_nav(Vector3<double>(0, kNaN, 0)), with_nav(Vector3<double>(0, 0, 4.0000001)),
+        with_nav(Vector3<double>(-just_beyond, 0, 0)), not_rotation}) {
     GuidanceGate<double> g;
     const GuidanceVerdict v = g.accept(in, kMaxBodyRate);
     EXPECT_FALSE(v.nav_ok);

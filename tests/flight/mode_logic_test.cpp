@@ -5,7 +5,7 @@
 #include "gyro/mode_logic.hpp"
 
 namespace gyro {
-namespace {
+namespace mode_logic_test {
 
 constexpr std::uint32_t kSettle = 3;
 constexpr std::uint32_t kRefused = kRequestRefused;
@@ -76,5 +76,5 @@ TEST(ModeLogic, IdleStaysIdle) {
   EXPECT_EQ(next(GyroMode::kIdle, ModeRequest::kUncage).mode, GyroMode::kIdle);
 }
 
-}  // namespace
+}  // namespace mode_logic_test
 }  // namespace gyro

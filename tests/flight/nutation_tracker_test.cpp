@@ -7,7 +7,7 @@
 #include "gyro/nutation_tracker.hpp"
 
 namespace gyro {
-namespace {
+namespace nutation_tracker_test {
 
 struct Rotor {
   double pitch_inertia{2e-4};
@@ -53,6 +53,18 @@ TEST(NutationTracker, FewerThanTwoTicksPerPeriodAliases) {
   EXPECT_TRUE(n.aliased());
 }
 
+// The aliasing follows the spin: beta = pi f here, pi f / 1000 a 1 ms tick, aliased above 1 kHz.
+TEST(NutationTracker, AliasingFollowsTheSpin) {
+  NutationTracker<double> n;
+  const Rotor r;
+  (void)n.follow(1500.0, r);
+  EXPECT_TRUE(n.aliased());
+  (void)n.follow(500.0, r);
+  EXPECT_FALSE(n.aliased()) << "the spin dropped below twice the tick rate of nutation";
+  (void)n.follow(1500.0, r);
+  EXPECT_TRUE(n.aliased());
+}
+
 TEST(NutationTracker, NoSpinNoNutationNoShaper) {
   NutationTracker<double> n;
   const NutationUpdate<double> u = n.follow(0.0, Rotor{});
@@ -61,5 +73,5 @@ TEST(NutationTracker, NoSpinNoNutationNoShaper) {
   EXPECT_EQ(u.shaper.spacing, 0u);
 }
 
-}  // namespace
+}  // namespace nutation_tracker_test
 }  // namespace gyro

@@ -2,12 +2,13 @@
 // jump bound widens with the ticks that passed without information.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "gyro/pickoff_gate.hpp"
 
 namespace gyro {
-namespace {
+namespace pickoff_gate_test {
 
 constexpr PickoffLimits<double> kLimits{0.5, 0.01};
 
@@ -51,9 +52,35 @@ TEST(PickoffGate, AnUnchangedSequenceIsStale) {
   EXPECT_EQ(v.flags, static_cast<std::uint32_t>(kPickoffStale));
 }
 
+// Even with sequence 0, as a driver's first conversion may carry; the same sequence again is stale.
 TEST(PickoffGate, TheFirstReadingIsNeverStaleNorAJump) {
   PickoffGate<double> g;
-  EXPECT_TRUE(g.accept(reading(0.4, 0.0, 0), true, 1, true, kLimits).accepted);
+  const PickoffVerdict first = g.accept(reading(0.4, 0.0, 0), true, 1, true, kLimits);
+  EXPECT_TRUE(first.accepted);
+  EXPECT_EQ(first.flags, 0u);
+  EXPECT_EQ(g.measured(), Vector2<double>(0.4, 0.0));
+  EXPECT_EQ(g.accept(reading(0.4, 0.0, 0), true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffStale))
+      << "the same sequence again is stale";
+}
+
+// A reading exactly at the range is taken; one ulp beyond it, on either axis and either side,
+// is invalid and the last accepted reading stands.
+TEST(PickoffGate, TheRangeIsInclusiveToTheLastBit) {
+  constexpr PickoffLimits<double> limits{4e-3, 4e-3};  // the step no tighter than the range
+  PickoffGate<double> g;
+  std::uint32_t sequence = 1;
+  (void)g.accept(reading(0.0, 0.0, sequence++), true, 1, true, limits);
+  for (const Vector2<double>& edge : {Vector2<double>(4e-3, 0.0), Vector2<double>(0.0, -4e-3)}) {
+    const PickoffVerdict at = g.accept(reading(edge(0), edge(1), sequence++), true, 1, true, limits);
+    EXPECT_TRUE(at.accepted) << edge.transpose();
+    EXPECT_EQ(at.flags, 0u) << edge.transpose();
+    EXPECT_EQ(g.measured(), edge);
+    const Vector2<double> beyond(std::nextafter(edge(0), 2 * edge(0)), std::nextafter(edge(1), 2 * edge(1)));
+    const PickoffVerdict past = g.accept(reading(beyond(0), beyond(1), sequence++), true, 1, true, limits);
+    EXPECT_FALSE(past.accepted);
+    EXPECT_EQ(past.flags, static_cast<std::uint32_t>(kPickoffInvalid)) << beyond.transpose();
+    EXPECT_EQ(g.measured(), edge) << "the last accepted reading stands";
+  }
 }
 
 TEST(PickoffGate, AJumpIsRefusedAndDoesNotWidenTheBound) {
@@ -64,6 +91,7 @@ TEST(PickoffGate, AJumpIsRefusedAndDoesNotWidenTheBound) {
       << "a bias jump stays refused";
   EXPECT_EQ(g.accept(reading(0.0101, 0.0, 3), true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffStale))
       << "the jumped reading's sequence was recorded";
+  EXPECT_EQ(g.measured(), Vector2<double>::Zero()) << "the last accepted reading stands";
 }
 
 TEST(PickoffGate, TheJumpBoundIsInclusive) {
@@ -87,6 +115,41 @@ TEST(PickoffGate, TheBoundWidensWithTicksWithoutInformation) {
       << "accepted: the blind ticks start again";
 }
 
+// Three invalid readings: the next may have moved four bounds. Accepted, the bound is one
+// tick's again.
+TEST(PickoffGate, InvalidReadingsWidenTheBoundUntilOneIsTaken) {
+  PickoffGate<double> g;
+  const double bound = kLimits.max_step_rad;
+  (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
+  PickoffReading<double> unset = reading(0.0, 0.0, 2);
+  unset.valid = false;
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_EQ(g.accept(unset, true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffInvalid));
+  }
+  const PickoffVerdict wide = g.accept(reading(3.5 * bound, 0.0, 3), true, 1, true, kLimits);
+  EXPECT_TRUE(wide.accepted);
+  EXPECT_EQ(wide.flags, 0u);
+  EXPECT_EQ(g.measured()(0), 3.5 * bound);
+  EXPECT_EQ(g.accept(reading(3.5 * bound + 1.5 * bound, 0.0, 4), true, 1, true, kLimits).flags,
+            static_cast<std::uint32_t>(kPickoffJump));
+  EXPECT_EQ(g.measured()(0), 3.5 * bound);
+}
+
+// A stale reading (the same conversion again) tells as little as an invalid one: the bound
+// widens by one tick's step for each.
+TEST(PickoffGate, StaleReadingsWidenTheBoundAsInvalidOnesDo) {
+  PickoffGate<double> g;
+  const double bound = kLimits.max_step_rad;
+  (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_EQ(g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffStale));
+  }
+  const PickoffVerdict v = g.accept(reading(0.0, -3.5 * bound, 2), true, 1, true, kLimits);  // four ticks: four bounds
+  EXPECT_TRUE(v.accepted);
+  EXPECT_EQ(v.flags, 0u);
+  EXPECT_EQ(g.measured()(1), -3.5 * bound);
+}
+
 TEST(PickoffGate, WithoutTheJumpTestTheReferenceFollows) {
   PickoffGate<double> g;
   (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
@@ -94,5 +157,5 @@ TEST(PickoffGate, WithoutTheJumpTestTheReferenceFollows) {
   EXPECT_EQ(g.measured()(0), 0.3);
 }
 
-}  // namespace
+}  // namespace pickoff_gate_test
 }  // namespace gyro

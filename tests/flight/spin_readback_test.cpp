@@ -2,6 +2,7 @@
 // low-spin flag at and below the minimum.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "gyro/seeker_component_example.hpp"
@@ -40,6 +41,21 @@ TEST(SpinReadback, AnUnusableReadbackGivesTheNominalSpin) {
   }
 }
 
+// A readback the port marks invalid is no spin, however plausible its value: the nominal is
+// flown and nothing is low; marked valid again, it is flown.
+TEST(SpinReadback, OneMarkedInvalidIsNeitherFlownNorLow) {
+  for (const double hz : {350.0, 100.0}) {
+    PickoffReading<double> unmarked = readback(hz);
+    unmarked.spin_valid = false;
+    const SpinFlown<double> s = spin_flown(unmarked, true, kSeeker);
+    EXPECT_EQ(s.hz, kSeeker.nominal_spin_hz) << hz;
+    EXPECT_EQ(s.flags, 0u) << hz;
+  }
+  const SpinFlown<double> marked = spin_flown(readback(100.0), true, kSeeker);
+  EXPECT_EQ(marked.hz, 100.0) << "marked valid again: used";
+  EXPECT_EQ(marked.flags, static_cast<std::uint32_t>(kSpinLow));
+}
+
 TEST(SpinReadback, AnUnrepresentableMomentumGivesTheNominalSpin) {
   // H = 2 pi J0 spin: with J0 = 1e6 a finite spin of 1e303 Hz has no finite momentum in double.
   GyroComponentConfig<double> heavy = kSeeker;
@@ -61,7 +77,9 @@ TEST(SpinReadback, AZeroReadbackIsFlownAndLow) {
 }
 
 TEST(SpinReadback, LowIsStrictlyBelowTheMinimum) {
-  EXPECT_EQ(spin_flown(readback(kSeeker.min_spin_hz), true, kSeeker).flags, 0u);
+  const SpinFlown<double> at = spin_flown(readback(kSeeker.min_spin_hz), true, kSeeker);
+  EXPECT_EQ(at.hz, kSeeker.min_spin_hz);
+  EXPECT_EQ(at.flags, 0u);
   EXPECT_EQ(spin_flown(readback(std::nextafter(kSeeker.min_spin_hz, 0.0)), true, kSeeker).flags,
             static_cast<std::uint32_t>(kSpinLow));
   GyroComponentConfig<double> low_nominal = kSeeker;

@@ -8,7 +8,7 @@
 #include "gyro/stop_protection.hpp"
 
 namespace gyro {
-namespace {
+namespace stop_protection_test {
 
 constexpr double kProtectCone = 0.32;
 const StopBound<double> kBound{std::sin(kProtectCone), 20.0};
@@ -106,5 +106,5 @@ TEST(TorqueLawInverse, RateForTorquersUndoesTorquersForRate) {
       << "no spin and no friction: no rate is held";
 }
 
-}  // namespace
+}  // namespace stop_protection_test
 }  // namespace gyro

@@ -1,6 +1,7 @@
 // The torque shaper's design (gyro/torque_shaper.hpp): the spacing m and first tap a for a
 // nutation phase a tick, folded into [0, pi], where no shaper can be designed, and the share
-// of another nutation a design lets through.
+// of another nutation a design lets through; and the filter: a step in three taps m ticks
+// apart, no nutation excited at the design phase, the torque limit, a history cleared.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,14 +11,14 @@
 #include "gyro/torque_shaper.hpp"
 
 namespace gyro {
-namespace {
+namespace torque_shaper_test {
 
 constexpr double kTurn = 2 * kPi<double>;
 
 // a = 1 / (2 (1 - cos(m phi))) for the folded phase phi.
 double first_tap(int m, double phi) { return 1 / (2 * (1 - std::cos(m * phi))); }
 
-TEST(TorqueShaperDesign, GivenPhasesBelowHalfATurnThenTheFewestTicksReachingAQuarterTurn) {
+TEST(TorqueShaperDesign, FewestTicksReachingAQuarterTurn) {
   const ShaperDesign<double> seeker = design_shaper(1.88);  // the seeker at 2 kHz
   EXPECT_EQ(seeker.spacing, 1u);
   EXPECT_NEAR(seeker.edge, first_tap(1, 1.88), 1e-15);
@@ -31,7 +32,7 @@ TEST(TorqueShaperDesign, GivenPhasesBelowHalfATurnThenTheFewestTicksReachingAQua
 }
 
 // A tick aliasing the nutation by less than a turn of m beta dt: the folded phase's design.
-TEST(TorqueShaperDesign, GivenAnAliasedPhaseWithinATurnThenTheDesignOfItsFoldedPhase) {
+TEST(TorqueShaperDesign, AnAliasedPhaseIsFoldedWithinATurn) {
   // The seeker at 1 kHz: beta dt = 3.77 rad, folded 2 pi - 3.77 = 2.51.
   const double seeker = 3769.964 * 1e-3;
   const ShaperDesign<double> d = design_shaper(seeker);
@@ -46,7 +47,7 @@ TEST(TorqueShaperDesign, GivenAnAliasedPhaseWithinATurnThenTheDesignOfItsFoldedP
 }
 
 // Past a turn of m beta dt, a few per cent of error in beta puts the notch anywhere: none.
-TEST(TorqueShaperDesign, GivenATickAliasingTheNutationByATurnOrMoreThenNoShaper) {
+TEST(TorqueShaperDesign, NoShaperWhenAliasedByATurnOrMore) {
   for (const double phi : {0.3, 1.2, 2.51, 3.0}) {
     SCOPED_TRACE(phi);
     ASSERT_GT(design_shaper(phi).spacing, 0u);
@@ -56,7 +57,7 @@ TEST(TorqueShaperDesign, GivenATickAliasingTheNutationByATurnOrMoreThenNoShaper)
   }
 }
 
-TEST(TorqueShaperDesign, GivenAPhaseNeedingMoreThanFifteenTicksOrNoneThenNoShaper) {
+TEST(TorqueShaperDesign, NoShaperBeyondFifteenTicksOrAtNone) {
   const ShaperDesign<double> longest = design_shaper(kPi<double> / 29);  // m = ceil(14.5)
   EXPECT_EQ(longest.spacing, kShaperMaxSpacing);
   EXPECT_NEAR(longest.edge, first_tap(15, kPi<double> / 29), 1e-12);
@@ -66,7 +67,7 @@ TEST(TorqueShaperDesign, GivenAPhaseNeedingMoreThanFifteenTicksOrNoneThenNoShape
   EXPECT_EQ(design_shaper(3 * kTurn + kPi<double> / 31).spacing, 0u);
 }
 
-TEST(TorqueShaperDesign, GivenFloatThenTheSameSpacingAsDouble) {
+TEST(TorqueShaperDesign, FloatHasTheSpacingOfDouble) {
   for (const double phi : {0.2, 1.0, 2.0, 3.1, 10.0, 100.0}) {
     EXPECT_EQ(design_shaper(static_cast<float>(phi)).spacing, design_shaper(phi).spacing) << phi;
   }
@@ -74,7 +75,7 @@ TEST(TorqueShaperDesign, GivenFloatThenTheSameSpacingAsDouble) {
 
 // The share passed is the three taps' gain, summed here as complex numbers: none at the
 // design's own phase (and its aliases), all of a constant torque, all without a shaper.
-TEST(TorqueShaperLeakage, GivenANutationPhaseThenTheTapsGainThere) {
+TEST(TorqueShaperLeakage, IsTheTapsGainAtThePhase) {
   const auto taps = [](const ShaperDesign<double>& d, double phase) {
     const std::complex<double> z = std::polar(1.0, -phase * d.spacing);
     return std::abs(d.edge + (1 - 2 * d.edge) * z + d.edge * z * z);
@@ -95,11 +96,7 @@ TEST(TorqueShaperLeakage, GivenANutationPhaseThenTheTapsGainThere) {
   EXPECT_NEAR(shaper_leakage(design_shaper(1.88), 1.88 / 3.819), 0.909, 1e-3);
 }
 
-}  // namespace
-}  // namespace gyro
-
-namespace gyro {
-namespace {
+// ---- the filter ----------------------------------------------------------------------------
 
 using V = Vector2<double>;
 
@@ -155,5 +152,5 @@ TEST(TorqueShaperFilter, ClearingStartsTheHistoryFromRest) {
   EXPECT_NEAR(s.shape(V(1.0, 0.0), 10.0)(0), d.edge, 1e-15) << "the step starts again from its first tap";
 }
 
-}  // namespace
+}  // namespace torque_shaper_test
 }  // namespace gyro

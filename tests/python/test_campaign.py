@@ -29,7 +29,7 @@ def test_given_a_campaign_when_run_from_python_then_its_rows_equal_gyro_campaign
             col = result[name]
             if name in ("run", "seed"):
                 assert col.dtype == np.uint64 and int(col[i]) == int(row[j]), (i, name)
-            elif name in ("pass", "detected", "false_alarm"):
+            elif name in ("pass", "detected", "false_alarm", "safe_mode_after_stop"):
                 assert col[i] is verdicts[row[j]], (i, name)
             elif isinstance(col, np.ndarray):
                 want = float(row[j]) if row[j] else np.nan

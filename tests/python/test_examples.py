@@ -37,3 +37,10 @@ def test_given_an_existing_figure_when_an_example_runs_then_it_is_replaced_whole
     old.write_bytes(b"old")
     run_example(source_dir, "report_figures.py", tmp_path)
     assert_png(old)
+
+
+@pytest.mark.parametrize("precision", ["double", "float"])
+def test_given_the_seeker_track_example_when_run_then_the_track_is_held(source_dir, tmp_path, precision):
+    # The example exits non-zero when the track is not held within 5 mrad.
+    run_example(source_dir, "seeker_track.py", tmp_path, "--precision", precision)
+    assert_png(tmp_path / "seeker_track.png")

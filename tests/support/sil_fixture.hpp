@@ -9,6 +9,7 @@
 #include "gyro/seeker_example.hpp"
 #include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "support/same_bits.hpp"
 
 namespace gyro::testing {
 
@@ -55,6 +56,17 @@ class Sil {
     for (int k = 0; k < ticks; ++k) (void)step();
   }
 
+  // `ticks` ticks pass for the body and the stub without the component being called: lost ticks.
+  Status lose_ticks(int ticks) {
+    for (int k = 0; k < ticks; ++k) {
+      R_earth_to_body = pitch_then_yaw_turn(body_rate, tick_s_) * R_earth_to_body;
+      ++tick;
+      const Status st = gyro.advance(tick, R_earth_to_body, Vector2<T>::Zero());
+      if (st != Status::kOk) return st;
+    }
+    return Status::kOk;
+  }
+
   // Caged for `caged` ticks, then uncaged and settled into free mode.
   bool uncage(int caged = 200) {
     run(caged);
@@ -77,14 +89,6 @@ template <typename T>
 }
 
 // Field by field, bit for bit (memcmp of the whole struct would compare padding too).
-template <typename A>
-[[nodiscard]] bool same_bits(const A& a, const A& b) {
-  return std::memcmp(&a, &b, sizeof(A)) == 0;
-}
-template <typename T, int R, int C>
-[[nodiscard]] bool same_bits(const Eigen::Matrix<T, R, C>& a, const Eigen::Matrix<T, R, C>& b) {
-  return std::memcmp(a.data(), b.data(), sizeof(T) * static_cast<std::size_t>(R * C)) == 0;
-}
 template <typename T>
 [[nodiscard]] bool identical(const GyroTelemetry<T>& a, const GyroTelemetry<T>& b) {
   return a.tick == b.tick && a.mode == b.mode && a.flags == b.flags && a.counters == b.counters &&

@@ -17,13 +17,15 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "gyro/gimbal_kinematics.hpp"
 #include "gyro/gimbal_plant_config.hpp"
 
 namespace gyro {
 
-// What the equations need from a configuration, folded once.
+// What the equations need from a configuration, folded once (and what they would otherwise
+// recompute at every evaluation).
 template <typename T>
 struct GimbalParameters {
   GimbalInertias<T> inertia{};
@@ -36,6 +38,10 @@ struct GimbalParameters {
   T spin_drag{};                            // J0 / spin_down_time_s, or 0
   T mass_unbalance{};
   TorquerAxes torquer_axes{TorquerAxes::kGimbal};
+  T pitch_inertia{};                        // Iy + A: the pitch row of M
+  T inner_z_inertia{};                      // Iz + A: in D
+  Vector3<T> inner_gyroscopic{Vector3<T>::Zero()};  // (Iz - Iy, Ix - Iz, Iy - Ix): W x J W
+  T rotor_gyroscopic{};                     // J0 - A: the rotor's W x J W (axisymmetric)
 };
 
 template <typename T>
@@ -53,6 +59,11 @@ template <typename T>
   p.spin_drag = c.spin_down_time_s > T(0) ? c.spin_inertia / c.spin_down_time_s : T(0);
   p.mass_unbalance = c.mass_unbalance;
   p.torquer_axes = c.torquer_axes;
+  p.pitch_inertia = c.inner_gimbal_inertia(1) + c.rotor_transverse_inertia;
+  p.inner_z_inertia = c.inner_gimbal_inertia(2) + c.rotor_transverse_inertia;
+  const Vector3<T>& i = c.inner_gimbal_inertia;
+  p.inner_gyroscopic = Vector3<T>(i(2) - i(1), i(0) - i(2), i(1) - i(0));
+  p.rotor_gyroscopic = c.spin_inertia - c.rotor_transverse_inertia;
   return p;
 }
 
@@ -84,12 +95,22 @@ struct GimbalAccelerations {
 
 namespace gimbal_detail {
 
+// tanh(x) from one expm1 (the library's tanh calls it and more): within rounding of it, and
+// exactly +-1 where tanh rounds to it (|x| > 20 in double, 10 in float).
+template <typename T>
+[[nodiscard]] T smooth_sign(T x) noexcept {
+  const T a = std::abs(x);
+  if (a > T(sizeof(T) == 4 ? 10 : 20)) return std::copysign(T(1), x);  // NaN goes on to expm1
+  const T e = std::expm1(T(2) * a);
+  return std::copysign(e / (e + T(2)), x);
+}
+
 // Viscous plus regularised dry friction; the tanh is skipped for a bearing configured without
 // dry friction (a configuration constant: every tick still costs the same).
 template <typename T>
 [[nodiscard]] T bearing_friction(T rate, T viscous, T coulomb, T inv_scale) noexcept {
   const T viscous_part = -viscous * rate;
-  return coulomb > T(0) ? viscous_part - coulomb * std::tanh(rate * inv_scale) : viscous_part;
+  return coulomb > T(0) ? viscous_part - coulomb * smooth_sign(rate * inv_scale) : viscous_part;
 }
 
 // Generalised forces (theta, psi) of a torque on the inner gimbal (its reaction on the body,
@@ -102,37 +123,47 @@ template <typename T>
 
 }  // namespace gimbal_detail
 
-// theta'', psi'', phi'' (and the motor torque, the twist rate and the powers) at one instant.
+// Whether an evaluation also gives the powers of the generalised forces (the energy
+// bookkeeping): the integration needs only the accelerations.
+enum class GimbalPowers : std::uint8_t { kSkip = 0, kCompute };
+
+// theta'', psi'', phi'' (and the motor torque, the twist rate and, when asked, the powers) at
+// one instant, with the frames at the state's angles given. An effect the configuration leaves
+// out (unbalance, dry friction, the gyro's torque axes) costs nothing.
 template <typename T>
 [[nodiscard]] GimbalAccelerations<T> gimbal_accelerations(const GimbalParameters<T>& prm, const GimbalJointState<T>& s,
-                                                          const GimbalDrive<T>& drive,
-                                                          const BodyInstant<T>& body) noexcept {
+                                                          const GimbalFrames<T>& f, const GimbalDrive<T>& drive,
+                                                          const BodyInstant<T>& body, GimbalPowers powers) noexcept {
   using gimbal_detail::bearing_friction;
   using gimbal_detail::on_joints;
   const GimbalInertias<T>& j = prm.inertia;
   const T th_d = s.pitch_rate_rad_s, ps_d = s.yaw_rate_rad_s, ph_d = s.spin_rate_rad_s;
-  const GimbalFrames<T> f = gimbal_frames(s.pitch_rad, s.yaw_rad);
   const GimbalBodyRates<T> w = gimbal_body_rates(f, s, body.rate_rad_s);
 
-  // a_b0: each body's angular acceleration with the joint accelerations set to zero.
-  const Vector3<T> w_body_outer = f.body_to_outer(body.rate_rad_s);
+  // a_b0: each body's angular acceleration with the joint accelerations set to zero. The body
+  // rate in outer axes and W_O in inner axes differ from W_O and W_I only in the components
+  // the joint rates add to (z and y), which these terms do not use.
   Vector3<T> a_outer = f.body_to_outer(body.rate_dot_rad_s2);
-  a_outer(0) += ps_d * w_body_outer(1);  // psi' (w x z)
-  a_outer(1) -= ps_d * w_body_outer(0);
-  const Vector3<T> w_outer_inner = f.outer_to_inner(w.outer);
+  a_outer(0) += ps_d * w.outer(1);  // psi' (w x z)
+  a_outer(1) -= ps_d * w.outer(0);
   Vector3<T> a_inner = f.outer_to_inner(a_outer);
-  a_inner(0) -= th_d * w_outer_inner(2);  // theta' (W_O x y)
-  a_inner(2) += th_d * w_outer_inner(0);
-  Vector3<T> a_rotor = a_inner;
-  a_rotor(1) += ph_d * w.inner(2);  // phi' (W_I x x)
-  a_rotor(2) -= ph_d * w.inner(1);
+  a_inner(0) -= th_d * w.inner(2);  // theta' (W_O x y)
+  a_inner(2) += th_d * w.inner(0);
+  // a_R0 = a_I0 + phi' (W_I x x); its x component is a_I0's.
+  const T a_rotor_y = a_inner(1) + ph_d * w.inner(2);
+  const T a_rotor_z = a_inner(2) - ph_d * w.inner(1);
 
-  // J_b a_b0 + W_b x J_b W_b for the outer gimbal (z needed) and inner gimbal plus rotor.
-  const Vector3<T> jo_w = j.outer.cwiseProduct(w.outer);
-  const T outer_z = j.outer(2) * a_outer(2) + w.outer(0) * jo_w(1) - w.outer(1) * jo_w(0);
-  const Vector3<T> assembly = j.inner.cwiseProduct(a_inner) + w.inner.cross(j.inner.cwiseProduct(w.inner)) +
-                              j.rotor.cwiseProduct(a_rotor) + w.rotor.cross(j.rotor.cwiseProduct(w.rotor));
-  const Vector3<T> yaw_axis = f.yaw_axis_in_inner();
+  // J_b a_b0 + W_b x J_b W_b for the outer gimbal (z needed) and inner gimbal plus rotor, the
+  // cross products written out for diagonal inertias (the rotor's axisymmetric).
+  const T outer_z = j.outer(2) * a_outer(2) + (j.outer(1) - j.outer(0)) * w.outer(0) * w.outer(1);
+  const Vector3<T>& wi = w.inner;
+  const Vector3<T>& gi = prm.inner_gyroscopic;
+  const T rotor_wx = w.rotor(0);
+  const T assembly_x = j.inner(0) * a_inner(0) + gi(0) * wi(1) * wi(2) + j.rotor(0) * a_inner(0);
+  const T assembly_y = j.inner(1) * a_inner(1) + gi(1) * wi(2) * wi(0) + j.rotor(1) * a_rotor_y +
+                       prm.rotor_gyroscopic * rotor_wx * wi(2);
+  const T assembly_z = j.inner(2) * a_inner(2) + gi(2) * wi(0) * wi(1) + j.rotor(1) * a_rotor_z -
+                       prm.rotor_gyroscopic * rotor_wx * wi(1);
 
   // Generalised forces on (theta, psi).
   Vector2<T> q_torquer, q_friction;
@@ -150,20 +181,23 @@ template <typename T>
     const T fr2 = bearing_friction(w2, prm.friction(1), prm.coulomb(1), prm.inv_coulomb_scale);
     q_friction = on_joints(f, Vector3<T>(fr1 * y_gyro + fr2 * z_gyro));
   }
-  // Unbalance: -m d x_I x f on the rotor = m d (0, f_z, -f_y) in inner axes.
-  const Vector3<T> f_inner = f.outer_to_inner(f.body_to_outer(body.specific_force));
-  const Vector2<T> q_unbalance =
-      on_joints(f, Vector3<T>(T(0), prm.mass_unbalance * f_inner(2), -prm.mass_unbalance * f_inner(1)));
+  // Unbalance: -m d x_I x f on the rotor = m d (0, f_z, -f_y) in inner axes: on the joints
+  // (m d f_z, -cos(theta) m d f_y).
+  Vector2<T> q_unbalance = Vector2<T>::Zero();
+  if (prm.mass_unbalance != T(0)) {
+    const Vector3<T> f_inner = f.outer_to_inner(f.body_to_outer(body.specific_force));
+    q_unbalance = Vector2<T>(prm.mass_unbalance * f_inner(2), -f.cp * prm.mass_unbalance * f_inner(1));
+  }
   const T drag = -prm.spin_drag * ph_d;
 
-  const T b_pitch = q_torquer(0) + q_friction(0) + q_unbalance(0) - assembly(1);
-  const T b_yaw = q_torquer(1) + q_friction(1) + q_unbalance(1) - outer_z - yaw_axis.dot(assembly);
-  const T b_spin = drag - j.rotor(0) * a_rotor(0);  // (W_R x J_R W_R) . x = 0 (axisymmetric)
+  const T b_pitch = q_torquer(0) + q_friction(0) + q_unbalance(0) - assembly_y;
+  const T b_yaw = q_torquer(1) + q_friction(1) + q_unbalance(1) - outer_z + f.sp * assembly_x - f.cp * assembly_z;
+  const T b_spin = drag - j.rotor(0) * a_inner(0);  // (W_R x J_R W_R) . x = 0 (axisymmetric)
 
   GimbalAccelerations<T> out;
-  out.pitch_acc = b_pitch / (j.inner(1) + j.rotor(1));
+  out.pitch_acc = b_pitch / prm.pitch_inertia;
   const T s2 = f.sp * f.sp, c2 = f.cp * f.cp;
-  const T d = j.outer(2) + j.inner(0) * s2 + (j.inner(2) + j.rotor(1)) * c2;  // det / J0
+  const T d = j.outer(2) + j.inner(0) * s2 + prm.inner_z_inertia * c2;  // det / J0
   bool free_spin = prm.spin_drive == SpinDrive::kFree;
   if (!free_spin) {
     const T spin_acc = prm.servo_bandwidth * (drive.spin_command_rad_s - ph_d);
@@ -185,12 +219,22 @@ template <typename T>
     out.spin_acc = b / j.rotor(0) + f.sp * out.yaw_acc;
   }
   out.twist_rate = -w.inner(0);
-  const Vector2<T> rates(th_d, ps_d);
-  out.torquer_power = q_torquer.dot(rates);
-  out.friction_power = q_friction.dot(rates);
-  out.spin_power = (out.motor_torque + drag) * ph_d;
-  out.unbalance_power = q_unbalance.dot(rates);
+  if (powers == GimbalPowers::kCompute) {
+    const Vector2<T> rates(th_d, ps_d);
+    out.torquer_power = q_torquer.dot(rates);
+    out.friction_power = q_friction.dot(rates);
+    out.spin_power = (out.motor_torque + drag) * ph_d;
+    out.unbalance_power = q_unbalance.dot(rates);
+  }
   return out;
+}
+
+// The same with the frames computed from the state's angles, and the powers.
+template <typename T>
+[[nodiscard]] GimbalAccelerations<T> gimbal_accelerations(const GimbalParameters<T>& prm, const GimbalJointState<T>& s,
+                                                          const GimbalDrive<T>& drive,
+                                                          const BodyInstant<T>& body) noexcept {
+  return gimbal_accelerations(prm, s, gimbal_frames(s.pitch_rad, s.yaw_rad), drive, body, GimbalPowers::kCompute);
 }
 
 }  // namespace gyro

@@ -2,15 +2,17 @@
 // (pitch) and an outer (yaw) gimbal in a body whose motion is prescribed, written from the
 // device's physics (docs/gimbal-plant.md), independent of the component's linear model.
 //
-//   configure(config, tick_s)          validates; fixes the sub-steps per tick
+//   configure(config, tick_s)          validates; fixes the bound of the sub-steps per tick
 //   start(initial, body)               joint angles and rates, relative spin, body at t0
 //   step(torque, body_start, body_end) one tick: torques held (zero-order hold), body rate and
 //                                      specific force linear in time between the two values
 //
-// Per tick: a fixed number n of eighth-order Runge-Kutta sub-steps (gyro/dormand_prince8.hpp),
-// n = ceil(tick * fastest rate / max_substep_phase_rad) from configure(), so every tick costs
-// the same; after each sub-step the stop contact is resolved (gyro/gimbal_stop.hpp).
-// No heap, no exceptions; float or double. A refused call changes nothing.
+// Per tick: n eighth-order Runge-Kutta sub-steps (gyro/dormand_prince8.hpp), n at most
+// n_max = ceil(tick * fastest rate / max_substep_phase_rad) from configure(); with an error
+// target, the fewest whose error estimate meets it (gyro/gimbal_substep_control.hpp: at most
+// three tries a tick), else n_max every tick. After each sub-step the stop contact is resolved
+// (gyro/gimbal_stop.hpp). No heap, no exceptions; float or double. A refused call changes
+// nothing.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +23,7 @@
 #include "gyro/gimbal_kinematics.hpp"
 #include "gyro/gimbal_plant_config.hpp"
 #include "gyro/gimbal_stop.hpp"
+#include "gyro/gimbal_substep_control.hpp"
 #include "gyro/saturate.hpp"
 
 namespace gyro {
@@ -92,7 +95,12 @@ class GimbalPlant {
     prm_ = make_gimbal_parameters(config);
     stop_ = make_gimbal_stop(config.stop_cone_rad, config.stop_restitution);
     tick_s_ = tick_s;
-    substeps_ = n;
+    max_substeps_ = n;
+    tolerance_ = config.error_target_rad * tick_s;  // the tick's share of the error per second
+    // The error norm: angles as they are, rates (and the spin) as the angle their error makes
+    // over the fastest motion's 1/rate.
+    const T inv_rate = T(1) / gimbal_fastest_rate(config);
+    error_weight_ << T(1), T(1), inv_rate, inv_rate, inv_rate, T(1);
     configured_ = true;
     started_ = false;
     return c;
@@ -124,6 +132,8 @@ class GimbalPlant {
     motor_torque_ = T(0);
     motor_saturated_ = false;
     contact_ = false;
+    next_substeps_ = max_substeps_;
+    last_substeps_ = 0;
     started_ = true;
     return Status::kOk;
   }
@@ -170,32 +180,69 @@ class GimbalPlant {
     drive.torque = torque;
     const Vector3<T> rate_dot = (body_end.rate_rad_s - body_start.rate_rad_s) / tick_s_;
     const Vector3<T> force_dot = (body_end.specific_force - body_start.specific_force) / tick_s_;
+    const bool unbalance = prm_.mass_unbalance != T(0);
+    const GimbalPowers powers = work_bookkeeping_ ? GimbalPowers::kCompute : GimbalPowers::kSkip;
+    SinCosNear<T> near_pitch, near_yaw;  // the sub-step's start: the stages' angles are near it
     bool saturated = false;
-    auto rhs = [&](T t, const State& x, State& dx, Integrals& q) noexcept {
+    auto rhs = [&](T t, const State& x, State& dx, Integrals* q) noexcept {
       BodyInstant<T> body;
       body.rate_rad_s = body_start.rate_rad_s + rate_dot * t;
       body.rate_dot_rad_s2 = rate_dot;
-      body.specific_force = body_start.specific_force + force_dot * t;
-      const GimbalAccelerations<T> acc = gimbal_accelerations(prm_, unpack(x), drive, body);
-      dx << x(2), x(3), acc.pitch_acc, acc.yaw_acc, acc.spin_acc, acc.twist_rate;
-      q << acc.torquer_power, acc.friction_power, acc.spin_power, acc.unbalance_power, acc.motor_torque;
+      if (unbalance) body.specific_force = body_start.specific_force + force_dot * t;
+      const GimbalJointState<T> s = unpack(x);
+      const GimbalFrames<T> f = gimbal_frames(near_pitch, near_yaw, s.pitch_rad, s.yaw_rad);
+      const GimbalAccelerations<T> acc = gimbal_accelerations(prm_, s, f, drive, body, powers);
+      dx(0) = x(2);
+      dx(1) = x(3);
+      dx(2) = acc.pitch_acc;
+      dx(3) = acc.yaw_acc;
+      dx(4) = acc.spin_acc;
+      dx(5) = acc.twist_rate;
+      if (q != nullptr) {
+        *q << acc.torquer_power, acc.friction_power, acc.spin_power, acc.unbalance_power, acc.motor_torque;
+      }
       saturated = saturated || acc.motor_saturated;
     };
 
-    const T h = tick_s_ / static_cast<T>(substeps_);
-    State x = pack(state_);
-    Integrals integral = Integrals::Zero();
+    // One try of n sub-steps from the tick's start: the state, the integrals, contact, and
+    // the sum of the sub-steps' error estimates (when the count is chosen from it).
+    const State x0 = pack(state_);
+    State x;
+    Integrals integral;
+    Integrals* integral_wanted = work_bookkeeping_ ? &integral : nullptr;
+    const State* weight = adaptive() ? &error_weight_ : nullptr;
     bool contact = false;
-    for (int i = 0; i < substeps_; ++i) {  // substeps_ <= kMaxGimbalSubsteps, fixed at configure()
-      dormand_prince8_step(rhs, static_cast<T>(i) * h, h, x, integral);
-      GimbalJointState<T> s = unpack(x);
-      if (resolve_gimbal_stop(stop_, prm_.inertia, s)) {
-        contact = true;
-        x = pack(s);
+    T error{};
+    auto integrate = [&](int n) noexcept {
+      const T h = tick_s_ / static_cast<T>(n);
+      x = x0;
+      integral.setZero();
+      contact = false;
+      saturated = false;
+      error = T(0);
+      for (int i = 0; i < n; ++i) {  // n <= max_substeps_ <= kMaxGimbalSubsteps
+        near_pitch = SinCosNear<T>::at(x(0));
+        near_yaw = SinCosNear<T>::at(x(1));
+        error += dormand_prince8_step(rhs, static_cast<T>(i) * h, h, x, integral_wanted, weight);
+        GimbalJointState<T> s = unpack(x);
+        if (resolve_gimbal_stop(stop_, prm_.inertia, s)) {
+          contact = true;
+          x = pack(s);
+        }
       }
+    };
+    // gyro/gimbal_substep_control.hpp: at most three tries, the last at the bound. A tick with
+    // stop contact takes the bound, as the contact's timing is resolved to a sub-step.
+    int n = adaptive() ? next_substeps_ : max_substeps_;
+    for (int tries = 1;; ++tries) {
+      integrate(n);
+      if (n == max_substeps_ || (!contact && error <= tolerance_)) break;
+      n = (tries == 1 && !contact) ? substeps_after_failure(n, error, tolerance_, max_substeps_) : max_substeps_;
     }
     if (!all_finite(x, integral)) return Status::kNumericalOverflow;
 
+    if (adaptive()) next_substeps_ = substeps_after_success(n, error, tolerance_);
+    last_substeps_ = n;
     state_ = unpack(x);
     state_.twist_rad = std::remainder(state_.twist_rad, T(2) * kPi<T>);
     drive_ = drive;
@@ -204,7 +251,7 @@ class GimbalPlant {
     work_.friction += integral(1);
     work_.spin += integral(2);
     work_.unbalance += integral(3);
-    motor_torque_ = integral(4) / tick_s_;
+    motor_torque_ = work_bookkeeping_ ? integral(4) / tick_s_ : T(0);
     motor_saturated_ = saturated;
     contact_ = contact;
     return Status::kOk;
@@ -239,11 +286,19 @@ class GimbalPlant {
     return gimbal_generalised_momentum(prm_.inertia, frames(), rates());
   }
   [[nodiscard]] const GimbalWork<T>& work() const noexcept { return work_; }
-  // The last step: mean spin-motor torque, whether the motor hit its limit, stop contact.
+  // Whether step() integrates the works and the motor torque (work(), motor_torque()): on
+  // unless turned off. The equations then skip the powers: the SIL stub reads neither.
+  void set_work_bookkeeping(bool on) noexcept { work_bookkeeping_ = on; }
+  [[nodiscard]] bool work_bookkeeping() const noexcept { return work_bookkeeping_; }
+  // The last step: mean spin-motor torque (0 without the bookkeeping), whether the motor hit its
+  // limit, stop contact.
   [[nodiscard]] T motor_torque() const noexcept { return motor_torque_; }
   [[nodiscard]] bool motor_saturated() const noexcept { return motor_saturated_; }
   [[nodiscard]] bool in_contact() const noexcept { return contact_; }
-  [[nodiscard]] int substeps() const noexcept { return substeps_; }
+  // The bound: the most sub-steps a tick takes (every tick's, in the tight setting); and the
+  // sub-steps the last tick kept.
+  [[nodiscard]] int substeps() const noexcept { return max_substeps_; }
+  [[nodiscard]] int last_substeps() const noexcept { return last_substeps_; }
   [[nodiscard]] T tick_s() const noexcept { return tick_s_; }
   [[nodiscard]] bool started() const noexcept { return started_; }
   [[nodiscard]] const GimbalPlantConfig<T>& config() const noexcept { return config_; }
@@ -268,6 +323,7 @@ class GimbalPlant {
     s.twist_rad = x(5);
     return s;
   }
+  [[nodiscard]] bool adaptive() const noexcept { return tolerance_ > T(0); }
   [[nodiscard]] bool within_envelope(const BodyState<T>& b) const noexcept {
     return b.rate_rad_s.norm() <= config_.max_body_rate_rad_s && b.specific_force.norm() <= config_.max_specific_force;
   }
@@ -280,7 +336,11 @@ class GimbalPlant {
   GimbalParameters<T> prm_{};
   GimbalStop<T> stop_{};
   T tick_s_{};
-  int substeps_{0};
+  int max_substeps_{0};
+  T tolerance_{};  // error_target_rad * tick_s; 0: the tight setting
+  Eigen::Matrix<T, 6, 1> error_weight_{Eigen::Matrix<T, 6, 1>::Ones()};
+  int next_substeps_{0};
+  int last_substeps_{0};
   bool configured_{false};
   bool started_{false};
   GimbalJointState<T> state_{};
@@ -290,6 +350,7 @@ class GimbalPlant {
   T motor_torque_{};
   bool motor_saturated_{false};
   bool contact_{false};
+  bool work_bookkeeping_{true};
 };
 
 }  // namespace gyro

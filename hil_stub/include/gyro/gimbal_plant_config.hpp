@@ -68,9 +68,14 @@ struct GimbalPlantConfig {
   T max_torque{};            // |T1|, |T2|
   T max_specific_force{};    // |specific force|
 
-  // Integration accuracy: the largest phase (rad) of the fastest motion per sub-step.
-  // docs/gimbal-plant.md tabulates the error against it.
+  // Integration accuracy (docs/gimbal-plant.md). The bound: no sub-step spans more than this
+  // phase (rad) of the fastest motion, which fixes the most sub-steps a tick takes.
   T max_substep_phase_rad{T(0.5)};
+  // The requirement: the gimbal-angle error the integration may add per simulated second.
+  // Each tick takes the fewest sub-steps (up to the bound) whose estimated error stays within
+  // its share of it. 0: the tight setting, every tick at the bound (the reference); the SIL
+  // stub puts its pickoff's target in place of 0 (gyro/simulated_gyro.hpp).
+  T error_target_rad{};
 };
 
 // The fields (gyro/config_fields.hpp). A scenario gives the rotor's spin inertia, its spin and
@@ -135,7 +140,13 @@ struct FieldTable<GimbalPlantConfig<T>> {
     v(Field{"max_specific_force", kPos, kRange, kOpt, nullptr, 1e-3, 1e7, "accel",
             "in the units of gyro.gravity: up to 1e6 g in m/s^2 (a gun launch is 2e4 g)"},
       c.max_specific_force...);
-    v(Field{"max_substep_phase_rad", kPos, kRange, kOpt, nullptr, 1e-6, 2.0, "rad", "the sub-step rule (docs/gimbal-plant.md)"}, c.max_substep_phase_rad...);
+    v(Field{"max_substep_phase_rad", kPos, kRange, kOpt, nullptr, 1e-6, 2.0, "rad",
+            "the bound of the sub-step rule: the most sub-steps a tick takes (docs/gimbal-plant.md)"},
+      c.max_substep_phase_rad...);
+    v(Field{"error_target_rad", kNonNeg, kRange, kOpt, nullptr, 0.0, 1e-2, "rad",
+            "the integration's gimbal-angle error per simulated second; 0: the SIL stub's, from the pickoff "
+            "(docs/gimbal-plant.md)"},
+      c.error_target_rad...);
   }
 };
 

@@ -25,6 +25,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -154,6 +155,20 @@ struct BodySample {
                                                   // of the report's plant (m/s^2 for SI)
 };
 
+// The gimbal plant's error target in the SIL when its configuration leaves it at 0: this
+// fraction of the finest angle the pickoff shows (its step or its noise's sigma, the smaller
+// of those it has) per simulated second, never below a floor. The plant's error estimate is
+// pessimistic: its measured error is about 1/200 of the target (docs/gimbal-plant.md).
+inline constexpr double kSilPlantErrorFraction = 1.0;
+inline constexpr double kSilPlantErrorFloorRad = 1e-9;
+
+template <typename T>
+[[nodiscard]] T sil_plant_error_target(const PickoffModel<T>& p) noexcept {
+  T finest = p.lsb_rad;
+  if (p.noise_rad > T(0) && (finest <= T(0) || p.noise_rad < finest)) finest = p.noise_rad;
+  return std::max(static_cast<T>(kSilPlantErrorFloorRad), static_cast<T>(kSilPlantErrorFraction) * finest);
+}
+
 template <typename T>
 class SimulatedGyro final : public GyroPort<T> {
  public:
@@ -171,8 +186,11 @@ class SimulatedGyro final : public GyroPort<T> {
       report_ = report;
     } else {
       GimbalPlant<T> gimbal;
-      const ConfigCheck gc = gimbal.configure(c.gimbal, c.tick_s);
+      GimbalPlantConfig<T> g = c.gimbal;
+      if (g.error_target_rad == T(0)) g.error_target_rad = sil_plant_error_target(c.pickoff);
+      const ConfigCheck gc = gimbal.configure(g, c.tick_s);
       if (!gc.ok()) return gc;
+      gimbal.set_work_bookkeeping(false);  // nothing here reads the works
       gimbal_ = gimbal;
     }
     config_ = c;

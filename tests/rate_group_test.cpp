@@ -5,11 +5,13 @@
 #include <cstdint>
 
 #include "gyro/rate_group.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
 
 TEST(RateGroup, GivenNoReleaseThenNoCycleAndGivenOneThenTickZeroRunsOnce) {
+  GYRO_VERIFIES("RG-1");
   RateGroup g;
   std::uint64_t tick = 99;
   EXPECT_FALSE(g.pending());
@@ -31,6 +33,7 @@ TEST(RateGroup, GivenNoReleaseThenNoCycleAndGivenOneThenTickZeroRunsOnce) {
 }
 
 TEST(RateGroup, GivenATickReleasedDuringTheCycleThenAnOverrunAndTheNextCycleRunsIt) {
+  GYRO_VERIFIES("RG-1", "RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   g.release();
@@ -48,6 +51,7 @@ TEST(RateGroup, GivenATickReleasedDuringTheCycleThenAnOverrunAndTheNextCycleRuns
 }
 
 TEST(RateGroup, GivenSeveralTicksReleasedDuringACycleThenTheLatestRunsAndTheOthersAreSkipped) {
+  GYRO_VERIFIES("RG-1", "RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   g.release();
@@ -66,6 +70,7 @@ TEST(RateGroup, GivenSeveralTicksReleasedDuringACycleThenTheLatestRunsAndTheOthe
 }
 
 TEST(RateGroup, GivenTicksReleasedBeforeTheFirstCycleThenTheyAreSkipped) {
+  GYRO_VERIFIES("RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   g.release();
@@ -76,6 +81,7 @@ TEST(RateGroup, GivenTicksReleasedBeforeTheFirstCycleThenTheyAreSkipped) {
 }
 
 TEST(RateGroup, GivenASteadyScheduleThenEveryTickRunsWithoutOverrun) {
+  GYRO_VERIFIES("RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   for (std::uint64_t k = 0; k < 10000; ++k) {

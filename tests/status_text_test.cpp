@@ -8,6 +8,7 @@
 #include <string>
 
 #include "gyro/status.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace status_text_test {
@@ -25,6 +26,7 @@ void expect_distinct_texts(int count, const char* what) {
 }
 
 TEST(StatusText, EachStatusHasItsOwnText) {
+  GYRO_VERIFIES("TLM-5");
   expect_distinct_texts<Status>(static_cast<int>(Status::kWrongMode) + 1, "Status");
   EXPECT_STREQ(to_string(Status::kOk), "ok");
   EXPECT_STREQ(to_string(Status::kNumericalOverflow), "result not representable");

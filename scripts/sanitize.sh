@@ -3,7 +3,9 @@
 # UndefinedBehaviorSanitizer, with source-based coverage and MC/DC of component/ and port/
 # (preset host-asan: build/host-asan, -O1 -g1, -fno-sanitize-recover=all, GYRO_SUITE_ONLY: not
 # the documentation tools; cmake/coverage-scope.list instruments the two flight libraries only),
-# and runs the whole suite with them: any sanitizer report fails its test. Every test process
+# and runs the whole suite with them: any sanitizer report fails its test. The preset turns
+# off -Wdeprecated-declarations: clang 19 flags libstdc++ 12's own std::stable_sort (its
+# get_temporary_buffer); the host build, GCC, keeps that warning an error. Every test process
 # merges its profile into build/host-asan/profiles (LLVM_PROFILE_FILE of the test preset); then
 # scripts/coverage_report.py checks the coverage gate (docs/coverage.md) and writes
 # build/host-asan/coverage.md (docs/coverage.md too with GYRO_COVERAGE_WRITE_DOC=1:

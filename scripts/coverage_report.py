@@ -12,8 +12,9 @@ covers it.
 
 The gate: every branch outcome and every MC/DC condition covered, or its condition listed in the
 reviewed exceptions of docs/coverage.md (section "Exceptions", a table of file, decision,
-condition and the reason no test from the interface can reach it). It fails on an uncovered
-condition that is not listed, and on a listed exception that is covered now or no longer exists.
+condition and the reason no test from the interface can reach it; a reason starting "open:" is
+a known gap not yet reviewed, counted apart). It fails on an uncovered condition that is not
+listed, and on a listed one that is covered now or no longer exists.
 
     scripts/coverage_report.py --build build/host-asan                 # report and gate
     scripts/coverage_report.py --build build/host-asan --write-doc     # and rewrite docs/coverage.md
@@ -195,7 +196,7 @@ def read_exceptions(doc):
             continue
         unquote = lambda c: c.strip("`").replace("\\|", "|")
         rows.append({"file": unquote(cells[0]), "decision": unquote(cells[1]), "condition": unquote(cells[2]),
-                     "reason": cells[3], "line": n})
+                     "reason": cells[3], "line": n, "open": cells[3].startswith("open:")})
     return rows
 
 
@@ -243,7 +244,8 @@ def render(files, items, exceptions, matched):
         f"{len(files)} files; {total['decisions']} decisions of two or more conditions, "
         f"{total['mcdc_n']} conditions in them; {total['branches_n'] // 2} conditions in all "
         f"({total['branches_n']} branch outcomes). Uncovered: {len(items)} "
-        f"({sum(1 for i in items if i in matched)} of them reviewed exceptions, below).")
+        f"({sum(1 for i in items if i in matched and not matched[i]['open'])} of them reviewed exceptions, "
+        f"{sum(1 for i in items if i in matched and matched[i]['open'])} open: listed, not yet reviewed).")
     out += ["", "| file | lines | statements (regions) | branches | MC/DC conditions |", "|---|--:|--:|--:|--:|"]
     parts = defaultdict(lambda: defaultdict(int))
     for r in rows:
@@ -269,7 +271,7 @@ def render(files, items, exceptions, matched):
         out += ["| file:line | condition | in the decision | what | exception |", "|---|---|---|---|---|"]
         for i in items:
             ex = matched.get(i)
-            where = f"row {exceptions.index(ex) + 1}" if ex else "**none**"
+            where = (f"row {exceptions.index(ex) + 1}" + (" (open)" if ex["open"] else "")) if ex else "**none**"
             out.append(f"| `{i[0]}:{i[1]}` | `{esc(i[3])}` | `{esc(i[2])}` | {i[4]} | {where} |")
     out += ["", END]
     return "\n".join(out)
@@ -321,8 +323,9 @@ def main():
     print(f"coverage of component/ and port/ ({len(binaries)} binaries): lines {pct(total['lines_c'], total['lines_n'])}, "
           f"statements {pct(total['regions_c'], total['regions_n'])}, branches "
           f"{pct(total['branches_c'], total['branches_n'])}, MC/DC {pct(total['mcdc_c'], total['mcdc_n'])} "
-          f"({total['mcdc_c']}/{total['mcdc_n']} conditions); {len(items)} uncovered, {len(matched)} of them "
-          f"reviewed exceptions; report {out}")
+          f"({total['mcdc_c']}/{total['mcdc_n']} conditions); {len(items)} uncovered, "
+          f"{sum(1 for e in matched.values() if not e['open'])} of them reviewed exceptions, "
+          f"{sum(1 for e in matched.values() if e['open'])} open; report {out}")
     for p in problems:
         print(f"coverage: {p}", file=sys.stderr)
     return 1 if problems else 0

@@ -32,6 +32,21 @@ TEST(RateGroup, GivenNoReleaseThenNoCycleAndGivenOneThenTickZeroRunsOnce) {
   EXPECT_EQ(g.telemetry().skipped, 0u);
 }
 
+TEST(RateGroup, GivenAnOpenCycleThenBeginIsRefusedUntilItEnds) {
+  GYRO_VERIFIES("RG-1");
+  RateGroup g;
+  std::uint64_t tick = 99;
+  g.release();
+  ASSERT_TRUE(g.begin(tick));
+  g.release();  // tick 1, released while tick 0 runs
+  EXPECT_FALSE(g.begin(tick)) << "a cycle is open";
+  EXPECT_EQ(tick, 0u);
+  EXPECT_EQ(g.telemetry().released, 1u) << "nothing changed";
+  EXPECT_TRUE(g.end());
+  ASSERT_TRUE(g.begin(tick));
+  EXPECT_EQ(tick, 1u);
+}
+
 TEST(RateGroup, GivenATickReleasedDuringTheCycleThenAnOverrunAndTheNextCycleRunsIt) {
   GYRO_VERIFIES("RG-1", "RG-2");
   RateGroup g;

@@ -175,7 +175,9 @@ def parse_junit(path):
                 continue
             m = SOURCE_RE.match(line)
             if m:
-                current.source = m.group(1)
+                # Relative to the repository; a build through ccache (base_dir) names some
+                # sources relative to the build directory: "../../../tests/x_test.cpp".
+                current.source = re.sub(r"^(\.\./)+", "", m.group(1))
                 continue
             m = VERIFIES_RE.match(line)
             if m:

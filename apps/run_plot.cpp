@@ -3,7 +3,6 @@
 #include <locale>
 #include <sstream>
 
-#include "gyro/enum_names.hpp"
 #include "sil_runner.hpp"
 
 namespace gyro::sil {
@@ -139,7 +138,9 @@ PlotPanel raster_panel(const RunTimeline& t) {
   PlotPanel p;
   p.ylabel = "";
   PlotRow mode{"mode", {}};
-  for (const ModeSpan& m : t.modes) mode.bars.push_back({m.span.from_s, m.span.to_s, mode_color(m.mode), enum_name_or(m.mode, "unknown")});
+  for (const ModeSpan& m : t.modes) {
+    mode.bars.push_back({m.span.from_s, m.span.to_s, mode_color(m.mode), enum_name_or(m.mode, "?")});
+  }
   p.rows.push_back(std::move(mode));
   for (int k = 1; k < kFaultKindCount; ++k) {
     const std::vector<TimeSpan>& f = t.faults[static_cast<std::size_t>(k)];

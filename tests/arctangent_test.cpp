@@ -8,6 +8,7 @@
 #include <random>
 
 #include "gyro/arctangent.hpp"
+#include "support/requirements.hpp"
 
 namespace {
 
@@ -25,6 +26,7 @@ T tolerance(T expected) {
 }
 
 TYPED_TEST(ArctangentTest, GivenPointsOnTheCircle_WhenTheAngleIsComputed_ThenItIsWithinTwoUlpsOfAtan2) {
+  GYRO_VERIFIES("EXACT-6");
   using T = TypeParam;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> angle(-3.14159265358979, 3.14159265358979);
@@ -41,6 +43,7 @@ TYPED_TEST(ArctangentTest, GivenPointsOnTheCircle_WhenTheAngleIsComputed_ThenItI
 }
 
 TYPED_TEST(ArctangentTest, GivenRatiosAtTheReductionBreakPoints_WhenTheAngleIsComputed_ThenItIsContinuous) {
+  GYRO_VERIFIES("EXACT-6");
   using T = TypeParam;
   // tan(pi/8), where the reduction starts, and 1, where the octants meet.
   for (const double t : {0.41421356237309504880, 1.0}) {
@@ -53,6 +56,7 @@ TYPED_TEST(ArctangentTest, GivenRatiosAtTheReductionBreakPoints_WhenTheAngleIsCo
 }
 
 TYPED_TEST(ArctangentTest, GivenTheAxesAndSignedZeros_WhenTheAngleIsComputed_ThenItIsExactAndKeepsTheSign) {
+  GYRO_VERIFIES("EXACT-6");
   using T = TypeParam;
   const T pi = T(3.14159265358979323846), half = pi / T(2);
   EXPECT_EQ(gyro::fixed_cost_atan2(T(0), T(1)), T(0));
@@ -66,6 +70,7 @@ TYPED_TEST(ArctangentTest, GivenTheAxesAndSignedZeros_WhenTheAngleIsComputed_The
 }
 
 TYPED_TEST(ArctangentTest, GivenNonFiniteArguments_WhenTheAngleIsComputed_ThenNaNIsNotHiddenAndInfinityIsAnAxis) {
+  GYRO_VERIFIES("EXACT-6");
   using T = TypeParam;
   const T inf = std::numeric_limits<T>::infinity(), nan = std::numeric_limits<T>::quiet_NaN();
   EXPECT_TRUE(std::isnan(gyro::fixed_cost_atan2(nan, T(1))));

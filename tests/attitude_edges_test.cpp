@@ -10,6 +10,7 @@
 
 #include "gyro/attitude.hpp"
 #include "gyro/gimbal_geometry.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -25,6 +26,7 @@ Eigen::Quaternion<long double> angle_axis_reference(double th, double ps) {
 // closed form beyond: both must be the rotation of their angle to a few ulps, at the edge, on
 // either side of it, and far from it.
 TEST(StepRotation, GivenAnglesAcrossTheSeriesEdgeAndBeyondThenItIsTheRotationOfTheirAngleToRounding) {
+  GYRO_VERIFIES("MODEL-3");
   const double edge = ScalarTraits<double>::kSmallRotation;
   const double eps = std::numeric_limits<double>::epsilon();
   for (const double angle : {1e-8, 1e-3, 0.02, std::nextafter(edge, 0.0), edge, std::nextafter(edge, 1.0), 0.07, 0.15,
@@ -37,7 +39,7 @@ TEST(StepRotation, GivenAnglesAcrossTheSeriesEdgeAndBeyondThenItIsTheRotationOfT
       // w = cos(h) to a few ulps of 1 (near h = pi/2 the rounding of h itself shows);
       // the axis part sin(h)/(2h) (th, ps) to a few ulps of itself, however small.
       const auto near = [eps](double got, long double want) {
-        return std::abs(static_cast<long double>(got) - want) <= 4 * eps * std::abs(want);
+        return std::abs(static_cast<long double>(got) - want) <= static_cast<long double>(4 * eps) * std::abs(want);
       };
       EXPECT_LE(std::abs(static_cast<long double>(q.w()) - r.w()), 4 * eps) << q.w() - static_cast<double>(r.w());
       EXPECT_EQ(q.x(), 0.0);
@@ -51,6 +53,7 @@ TEST(StepRotation, GivenAnglesAcrossTheSeriesEdgeAndBeyondThenItIsTheRotationOfT
 // still a unit quaternion about the axis (0, th, ps). (At such angles one ulp is many turns:
 // only the axis and the norm mean anything.)
 TEST(StepRotation, GivenAnglesWhoseSquaresOverflowThenAUnitQuaternionAboutTheirAxis) {
+  GYRO_VERIFIES("MODEL-3");
   for (const double scale : {1e150, 1e154, 1e155, 1e200, 1e307}) {
     SCOPED_TRACE(scale);
     const double th = 0.6 * scale, ps = -0.8 * scale;
@@ -67,6 +70,7 @@ TEST(StepRotation, GivenAnglesWhoseSquaresOverflowThenAUnitQuaternionAboutTheirA
 // takes yaw zero; the outer torquer's cos th is held at kMinCosPitch instead of dividing by
 // zero. Built from exact matrix entries, so that cos th is exactly zero.
 TEST(GimbalFrameLock, GivenTheSpinAxisExactlyAlongBodyZThenTheFrameIsFiniteWithYawZeroAndCosPitchAtItsGuard) {
+  GYRO_VERIFIES("MODEL-5");
   Matrix3<double> gyro_to_body;
   gyro_to_body.col(0) = Vector3<double>(0.0, 0.0, -1.0);  // x: pitch +90 deg
   gyro_to_body.col(1) = Vector3<double>(0.0, 1.0, 0.0);
@@ -89,6 +93,7 @@ TEST(GimbalFrameLock, GivenTheSpinAxisExactlyAlongBodyZThenTheFrameIsFiniteWithY
 // Away from the lock the frame read off a gyro's axes is the frame at its gimbal angles: the
 // spin axis turned by pitch about y, then yaw about z (Eigen's active rotations), no twist.
 TEST(GimbalFrameLock, GivenAGyroOnItsGimbalsThenTheFrameOfItsAxesIsTheFrameAtItsAngles) {
+  GYRO_VERIFIES("MODEL-5");
   for (const Vector2<double>& g : {Vector2<double>(0.3, -0.7), Vector2<double>(-1.2, 2.5), Vector2<double>(1.5, 0.1)}) {
     SCOPED_TRACE(g.transpose());
     const Matrix3<double> gyro_to_body = (Eigen::AngleAxis<double>(g(1), Vector3<double>::UnitZ()) *
@@ -112,6 +117,7 @@ TEST(GimbalFrameLock, GivenAGyroOnItsGimbalsThenTheFrameOfItsAxesIsTheFrameAtIts
 // and the frame from an attitude and a body (without the whole product) is the frame of the
 // product.
 TEST(GimbalFrameTwist, GivenAGyroRolledOnItsGimbalThenTheTwistIsTheDotProductsOfTheTwoFrames) {
+  GYRO_VERIFIES("MODEL-5");
   const Vector2<double> gimbal(0.4, -1.1);
   for (const double roll : {0.0, 0.3, -2.0, 3.0}) {
     SCOPED_TRACE(roll);
@@ -146,6 +152,7 @@ TEST(GimbalFrameTwist, GivenAGyroRolledOnItsGimbalThenTheTwistIsTheDotProductsOf
 // the frame built exactly at the moved angles: the error is third order (halving the move
 // divides it by about 8; a sign or a missing second-order term would leave a ratio of 2 or 4).
 TEST(GimbalFrameMoved, GivenAPitchChangeAndARollThenTheTorqueIsTheMovedFramesToThirdOrder) {
+  GYRO_VERIFIES("MODEL-5");
   const auto frame_of = [](double pitch, double gyro_roll) {
     return gimbal_frame(Matrix3<double>((Eigen::AngleAxis<double>(0.6, Vector3<double>::UnitZ()) *
                                          Eigen::AngleAxis<double>(pitch, Vector3<double>::UnitY()) *
@@ -215,6 +222,7 @@ void check_rotation_tolerance() {
 }
 
 TEST(RotationCheck, GivenARotationMovedWithinAndBeyondTheToleranceThenAcceptedAndRefused) {
+  GYRO_VERIFIES("INPUT-4");
   check_rotation_tolerance<double>();
   check_rotation_tolerance<float>();
 }

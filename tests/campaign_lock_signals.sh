@@ -11,12 +11,13 @@ exe=$1 campaign=$2 work=$3
 fail() { echo "$*"; exit 1; }
 
 # Starts the long campaign into $1 in the background (its signals at their defaults: a
-# background job of a non-interactive shell would ignore SIGINT) and waits for its lock.
+# background job of a non-interactive shell would ignore SIGINT) and waits for its lock and
+# for the marker it writes next (DIR as the first campaign keeps it while it runs).
 start() {
   env --default-signal=INT,TERM "$exe" run "$campaign" -o "$1" -j 1 -q --no-plots >"$1.out" 2>&1 &
   pid=$!
   i=0
-  while [ ! -e "$1/.gyro_campaign.lock" ]; do
+  while [ ! -e "$1/.gyro_campaign.lock" ] || [ ! -e "$1/.gyro_campaign" ]; do
     i=$((i + 1))
     [ $i -gt 200 ] && fail "no lock file in $1 after 10 s"
     kill -0 $pid 2>/dev/null || fail "the first campaign ended early: $(cat "$1.out")"

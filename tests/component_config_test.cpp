@@ -15,6 +15,7 @@
 #include "gyro/seeker_example.hpp"
 #include "gyro/sil_contract.hpp"
 #include "gyro/torque_shaper.hpp"
+#include "support/requirements.hpp"
 #include "support/sil_fixture.hpp"
 
 namespace gyro {
@@ -36,6 +37,7 @@ ConfigCheckList<32> all_of(const GyroComponentConfig<double>& c) {
 }
 
 TEST(ComponentConfig, TheSeekerExampleBreaksNoRule) {
+  GYRO_VERIFIES("CONF-8");
   EXPECT_TRUE(all_of(Seeker::component()).empty());
   GyroComponentConfig<float> f;
   cast_fields(Seeker::component(), f);
@@ -48,6 +50,7 @@ TEST(ComponentConfig, TheSeekerExampleBreaksNoRule) {
 }
 
 TEST(ComponentConfig, EveryNumberFieldHasBothBounds) {
+  GYRO_VERIFIES("CONF-1");
   const GyroComponentConfig<double> c{};
   visit_fields(
       [](const Field& f, const auto& m) {
@@ -65,6 +68,7 @@ TEST(ComponentConfig, EveryNumberFieldHasBothBounds) {
 }
 
 TEST(ComponentConfig, EachBadFieldIsRefusedByName) {
+  GYRO_VERIFIES("CONF-1");
   using C = GyroComponentConfig<double>;
   struct Case {
     const char* field;
@@ -131,6 +135,7 @@ double cage_ceiling(const GyroComponentConfig<double>& c) {
 
 // Each limit exactly at its edge: the inclusive ones are accepted, the strict ones refused.
 TEST(ComponentConfig, InclusiveEdgesAcceptedStrictOnesRefused) {
+  GYRO_VERIFIES("CONF-1");
   using C = GyroComponentConfig<double>;
   struct Case {
     const char* field;
@@ -175,6 +180,7 @@ TEST(ComponentConfig, InclusiveEdgesAcceptedStrictOnesRefused) {
 // high that H^2 overflows is refused at configure, not discovered in flight. Since the
 // contract bounds the spin (100 kHz), such a spin is refused by its own range first.
 TEST(ComponentConfig, ANominalSpinOf1e200IsRefusedByItsRange) {
+  GYRO_VERIFIES("CONF-1", "CONF-2");
   Sil<double> sil;
   GyroComponentConfig<double> c = Seeker::component();
   c.nominal_spin_hz = 1e200;  // finite and above min_spin_hz
@@ -189,6 +195,7 @@ TEST(ComponentConfig, ANominalSpinOf1e200IsRefusedByItsRange) {
 // Rate limits far beyond the contract's 100 rad/s (one tick's slew must stay within the
 // small-angle limit too), up to the largest double: refused, naming the first rate limit.
 TEST(ComponentConfig, RateLimitsBeyond100RadPerSecondAreRefused) {
+  GYRO_VERIFIES("CONF-1");
   for (const double limit : {1e300, 1e308, 1.7e308}) {
     GyroComponentConfig<double> c = Seeker::component();
     c.max_pitch_rate_rad_s = limit;
@@ -205,6 +212,7 @@ TEST(ComponentConfig, RateLimitsBeyond100RadPerSecondAreRefused) {
 // fuzz_component_tick: scaling by that ratio overshot the limit by 5e-15 relative) cannot
 // precess the spin axis at all: the configuration contract refuses it, naming the rule.
 TEST(ComponentConfig, ATinyTorqueLimitIsRefused) {
+  GYRO_VERIFIES("CONF-3");
   GyroComponentConfig<double> c = Seeker::component();
   c.max_torque = 1.8816602877266144e-306;
   const ConfigCheck r = check(c);
@@ -217,6 +225,7 @@ TEST(ComponentConfig, ATinyTorqueLimitIsRefused) {
 }
 
 TEST(ComponentConfig, ASettleBeyondTheLongestTimeIsRefused) {
+  GYRO_VERIFIES("CONF-5");
   GyroComponentConfig<double> c = Seeker::component();
   c.uncage_settle_ticks = 4294967295u;
   const ConfigCheck r = check(c);
@@ -231,6 +240,7 @@ TEST(ComponentConfig, ASettleBeyondTheLongestTimeIsRefused) {
 }
 
 TEST(ComponentConfig, ATinyBodyRateLimitIsRefusedAsALockOut) {
+  GYRO_VERIFIES("CONF-3");
   GyroComponentConfig<double> c = Seeker::component();
   c.max_body_rate_rad_s = 5e-324;
   const ConfigCheck r = check(c);
@@ -249,6 +259,7 @@ TEST(ComponentConfig, ATinyBodyRateLimitIsRefusedAsALockOut) {
 }
 
 TEST(ComponentConfig, AResidualLimitBelowTwoLsbsIsRefused) {
+  GYRO_VERIFIES("CONF-5");
   GyroComponentConfig<double> c = Seeker::component();
   c.pickoff_lsb_rad = 6.103515625e-05;
   EXPECT_TRUE(check(c).ok());
@@ -269,6 +280,7 @@ TEST(ComponentConfig, AResidualLimitBelowTwoLsbsIsRefused) {
 }
 
 TEST(ComponentConfig, AResidualBelowTheHardwaresLsbIsRefused) {
+  GYRO_VERIFIES("CONF-5", "STUB-4");
   SimulatedGyroConfig<double> g = Seeker::stub();
   g.pickoff.lsb_rad = 6.103515625e-05;
   GyroComponentConfig<double> c = Seeker::component();
@@ -283,6 +295,7 @@ TEST(ComponentConfig, AResidualBelowTheHardwaresLsbIsRefused) {
 }
 
 TEST(ComponentConfig, APickoffStepBeyondTheRangeIsRefused) {
+  GYRO_VERIFIES("CONF-5");
   GyroComponentConfig<double> c = Seeker::component();
   c.max_pickoff_step_rad = 1.0;  // range 0.6
   const ConfigCheck r = check(c);
@@ -295,6 +308,7 @@ TEST(ComponentConfig, APickoffStepBeyondTheRangeIsRefused) {
 }
 
 TEST(ComponentConfig, APickoffRangeOf5RadIsRefusedOnBothSides) {
+  GYRO_VERIFIES("CONF-1", "STUB-4");
   GyroComponentConfig<double> c = Seeker::component();
   c.pickoff_range_rad = 5.0;
   const ConfigCheck r = check(c);
@@ -308,6 +322,7 @@ TEST(ComponentConfig, APickoffRangeOf5RadIsRefusedOnBothSides) {
 }
 
 TEST(ComponentConfig, ATorqueLimitBeyondTheTorquersIsRefused) {
+  GYRO_VERIFIES("STUB-4");
   SimulatedGyroConfig<double> g = Seeker::stub();
   g.torquer.max_torque = 0.1;
   GyroComponentConfig<double> c = Seeker::component();
@@ -328,6 +343,7 @@ TEST(ComponentConfig, ATorqueLimitBeyondTheTorquersIsRefused) {
 }
 
 TEST(ComponentConfig, ACageGainOfZeroOrOverATickIsRefused) {
+  GYRO_VERIFIES("CONF-4");
   GyroComponentConfig<double> c = Seeker::component();
   c.cage_gain_1_s = 0;
   EXPECT_STREQ(check(c).field, "cage_gain_1_s");
@@ -341,6 +357,7 @@ TEST(ComponentConfig, ACageGainOfZeroOrOverATickIsRefused) {
 // the cage gain stays below a quarter of the nutation frequency, and where no torque shaper
 // can be designed (a tick of under pi/30 of nutation phase), below the bearings' damping.
 TEST(ComponentConfig, ACageGainDrivingTheNutationIsRefused) {
+  GYRO_VERIFIES("CONF-4");
   GyroComponentConfig<double> c = Seeker::component();
   const double beta = 2 * kPi<double> * c.nominal_spin_hz * c.spin_inertia / c.pitch_inertia;  // J1 = J2
   c.cage_gain_1_s = 1000;  // within 1 / tick (2000)
@@ -379,6 +396,7 @@ TEST(ComponentConfig, ACageGainDrivingTheNutationIsRefused) {
 // and the shaper passes 91 % of it, no better than none; without bearing damping the stop
 // protection's turn gain pumps it. At the seeker's own (0.45 rad) 1.16 times, 20 % passed.
 TEST(ComponentConfig, BeyondTheShapersNotchTheBearingsMustDamp) {
+  GYRO_VERIFIES("CONF-4");
   GyroComponentConfig<double> c = Seeker::component();
   const double h = 2 * kPi<double> * c.nominal_spin_hz * c.spin_inertia;
   // The three taps' gain at a nutation of `phase` rad a tick, summed here as complex numbers.
@@ -412,6 +430,7 @@ TEST(ComponentConfig, BeyondTheShapersNotchTheBearingsMustDamp) {
 // motion (a hundredth) settles at that over the gain, within the residual limit. Without
 // correction (gain 0) the prediction drifts from the gimbal without bound.
 TEST(ComponentConfig, AnEstimatorGainTooSmallIsRefused) {
+  GYRO_VERIFIES("CONF-4");
   GyroComponentConfig<double> c = Seeker::component();
   const double rate = std::max(c.max_pitch_rate_rad_s, c.max_yaw_rate_rad_s);
   const double floor = 0.01 * rate * c.tick_s / c.residual_limit_rad;
@@ -431,6 +450,7 @@ TEST(ComponentConfig, AnEstimatorGainTooSmallIsRefused) {
 }
 
 TEST(ComponentConfig, CheckAllListsEveryBrokenRule) {
+  GYRO_VERIFIES("CONF-6");
   GyroComponentConfig<double> c = Seeker::component();
   c.max_pickoff_step_rad = 1.0;           // above the range
   c.gimbal_stop_margin_rad = 1e-6;        // less than a tick at the rate limit, and than the
@@ -449,6 +469,7 @@ TEST(ComponentConfig, CheckAllListsEveryBrokenRule) {
 }
 
 TEST(ComponentConfig, CheckAllNamesEachFieldOnce) {
+  GYRO_VERIFIES("CONF-6");
   GyroComponentConfig<double> c = Seeker::component();
   c.tick_s = 1.0;  // beyond 0.1 s
   c.estimator_gain = 1.5;
@@ -462,6 +483,7 @@ TEST(ComponentConfig, CheckAllNamesEachFieldOnce) {
 }
 
 TEST(ComponentConfig, AConeBeyondTheHardwaresStopIsRefused) {
+  GYRO_VERIFIES("CONF-5", "STUB-4");
   GyroComponentConfig<double> c = Seeker::component();
   SimulatedGyroConfig<double> g = Seeker::stub();
   g.gimbal.stop_cone_rad = 0.45;  // inside the component's 0.5 rad cone
@@ -473,6 +495,7 @@ TEST(ComponentConfig, AConeBeyondTheHardwaresStopIsRefused) {
 }
 
 TEST(ComponentConfig, ARefusalIsTruncatedToASmallBuffer) {
+  GYRO_VERIFIES("CONF-6");
   GyroComponentConfig<double> c = Seeker::component();
   c.estimator_gain = 1.5;
   char buf[16];
@@ -483,6 +506,7 @@ TEST(ComponentConfig, ARefusalIsTruncatedToASmallBuffer) {
 
 // A refused configure() leaves the component with the configuration it accepted before.
 TEST(ComponentConfig, ARefusedConfigureKeepsTheAcceptedOne) {
+  GYRO_VERIFIES("LIFE-1");
   Sil<double> sil;
   GyroComponentConfig<double> c = Seeker::component();
   c.use_spin_readback = false;

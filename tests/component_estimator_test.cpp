@@ -10,6 +10,7 @@
 #include "gyro/gyro_component.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "support/faulty_harness.hpp"
+#include "support/requirements.hpp"
 #include "support/sil_fixture.hpp"
 
 namespace gyro {
@@ -27,6 +28,7 @@ const GyroComponentConfig<double> kSeeker = SeekerGyro<double>::component();
 // The estimator's transition is cached per spin and step: with the spin held at the nominal
 // (no readback), a gap changes only the step, and the prediction must span all of it.
 TEST(ComponentEstimator, SpansLostTicksAtTheNominalSpin) {
+  GYRO_VERIFIES("EST-2", "TICK-2");
   GyroComponentConfig<double> c = kSeeker;
   c.use_spin_readback = false;
   for (const int gap : {2, 5, 8}) {
@@ -89,6 +91,7 @@ struct PlantBench {
 // finely. At a 10 kHz tick (beta dt = 0.38 rad) the two differ by a factor of 16:
 // 5.3e-6 rad against 3.3e-7 rad.
 TEST(ComponentEstimator, FollowsTheBodysMeanRateOverATick) {
+  GYRO_VERIFIES("EST-2");
   GyroComponentConfig<double> c = kSeeker;
   c.tick_s = 1e-4;
   c.uncage_settle_ticks = 1;
@@ -161,10 +164,12 @@ void expect_estimator_restarts_after_unrepresentable_prediction(T huge_spin_hz) 
 }
 
 TEST(ComponentEstimator, OverflowSkipsAndRestartsInDouble) {
+  GYRO_VERIFIES("EST-4");
   expect_estimator_restarts_after_unrepresentable_prediction<double>(1e200);
 }
 
 TEST(ComponentEstimator, OverflowSkipsAndRestartsInFloat) {
+  GYRO_VERIFIES("EST-4", "RULE-8");
   expect_estimator_restarts_after_unrepresentable_prediction<float>(1e30f);
 }
 

@@ -16,6 +16,7 @@
 #include "gyro/simulated_gyro.hpp"
 #include "support/corrupting_port.hpp"
 #include "support/faulty_harness.hpp"
+#include "support/requirements.hpp"
 #include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -128,6 +129,7 @@ const GyroComponentConfig<double> kSeekerConfig = SeekerGyro<double>::component(
 // ---- the tick count --------------------------------------------------------------------------
 
 TEST(ComponentTicks, ACountFarAheadCostsTwoFlaggedTicks) {
+  GYRO_VERIFIES("TICK-3");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -152,6 +154,7 @@ TEST(ComponentTicks, ACountFarAheadCostsTwoFlaggedTicks) {
 }
 
 TEST(ComponentTicks, RepeatsAndStepsBackAreOneTickEach) {
+  GYRO_VERIFIES("TICK-3");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -174,6 +177,7 @@ TEST(ComponentTicks, RepeatsAndStepsBackAreOneTickEach) {
 }
 
 TEST(ComponentTicks, AGapIsBridgedAndTheResidualStaysSmall) {
+  GYRO_VERIFIES("TICK-2");
   // Two rigs, one ticked every tick, one missing ticks: after a gap of g ticks the component
   // predicts over g ticks, so its residual stays at the level of the rig that missed nothing.
   for (const std::uint64_t gap : {2ULL, 5ULL, 8ULL}) {
@@ -200,6 +204,7 @@ TEST(ComponentTicks, AGapIsBridgedAndTheResidualStaysSmall) {
 // Lost ticks are no bad input: each bridged gap, the longest included, is flagged and counted
 // once, the tick runs with status kOk, and the tick after it is an ordinary one.
 TEST(ComponentTicks, ABridgedGapIsCountedNotIgnored) {
+  GYRO_VERIFIES("TICK-2");
   Bench b;
   ASSERT_TRUE(b.ok);
   b.run(5);
@@ -219,6 +224,7 @@ TEST(ComponentTicks, ABridgedGapIsCountedNotIgnored) {
 // 5e-4 rad a tick, so over a gap of four ticks the reading moves beyond one tick's bound of
 // 1.75e-3 rad and within four ticks'.
 TEST(ComponentTicks, AReadingAfterAGapGetsTheGapsJumpBound) {
+  GYRO_VERIFIES("TICK-2", "PICK-3");
   GyroComponentConfig<double> c = kSeekerConfig;
   c.max_pickoff_step_rad = 1.75e-3;  // the contract's least: 2 (a tick at 1 rad/s + a full-torque nutation)
   Sil<double> sil;
@@ -240,6 +246,7 @@ TEST(ComponentTicks, AReadingAfterAGapGetsTheGapsJumpBound) {
 // ---- guidance commands ------------------------------------------------------------------------
 
 TEST(ComponentGuidance, ANonFiniteSlewHoldsTheLastOne) {
+  GYRO_VERIFIES("INPUT-1");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -263,6 +270,7 @@ TEST(ComponentGuidance, ANonFiniteSlewHoldsTheLastOne) {
 // last usable command instead. Apart from the flags and counters of what A ignored,
 // everything is bit-identical.
 TEST(ComponentGuidance, AnIgnoredFieldLeavesNoOtherTrace) {
+  GYRO_VERIFIES("INPUT-1", "LIFE-5");
   Sil<double> a, b;
   ASSERT_TRUE(a.start());
   ASSERT_TRUE(b.start());
@@ -289,6 +297,7 @@ TEST(ComponentGuidance, AnIgnoredFieldLeavesNoOtherTrace) {
 // ---- navigation -------------------------------------------------------------------------------
 
 TEST(ComponentNavigation, AnOutageIsFlownNotRefused) {
+  GYRO_VERIFIES("INPUT-3");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -317,6 +326,7 @@ TEST(ComponentNavigation, AnOutageIsFlownNotRefused) {
 }
 
 TEST(ComponentNavigation, UnusableNavigationIsIgnored) {
+  GYRO_VERIFIES("INPUT-4");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -343,6 +353,7 @@ TEST(ComponentNavigation, UnusableNavigationIsIgnored) {
 // instead of holding the last believed rate. Caged at a zero reading the command is then
 // exactly that of a body at rest once the shaper has let the earlier commands out.
 TEST(ComponentNavigation, TorqueLawTakesTheBodyRateAsUnknown) {
+  GYRO_VERIFIES("INPUT-3", "EST-7");
   Bench turning;
   Bench still;
   ASSERT_TRUE(turning.ok && still.ok);
@@ -365,6 +376,7 @@ TEST(ComponentNavigation, TorqueLawTakesTheBodyRateAsUnknown) {
 // ---- the pickoffs -------------------------------------------------------------------------------
 
 TEST(ComponentPickoffs, NineteenInvalidInTwentyLatchAFault) {
+  GYRO_VERIFIES("PICK-6");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -378,6 +390,7 @@ TEST(ComponentPickoffs, NineteenInvalidInTwentyLatchAFault) {
 }
 
 TEST(ComponentPickoffs, ABiasJumpLatchesAndCagingRecovers) {
+  GYRO_VERIFIES("PICK-3", "PICK-6", "MODE-5");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -395,6 +408,7 @@ TEST(ComponentPickoffs, ABiasJumpLatchesAndCagingRecovers) {
 }
 
 TEST(ComponentPickoffs, TheFirstReadingAfterStaleOnesIsTaken) {
+  GYRO_VERIFIES("PICK-2");
   Rig<double> rig;
   ASSERT_TRUE(rig.start());
   ASSERT_TRUE(rig.uncage());
@@ -413,6 +427,7 @@ TEST(ComponentPickoffs, TheFirstReadingAfterStaleOnesIsTaken) {
 // A reading beyond the pickoffs' physical range (valid bit set, sequence advancing) is not
 // believed: flagged invalid, not accepted, and a fault once it persists.
 TEST(ComponentPickoffs, OutOfRangeIsInvalidThenAFault) {
+  GYRO_VERIFIES("PICK-1", "PICK-6");
   FaultyRig<double> rig;
   ASSERT_TRUE(rig.start());
   for (int k = 0; k < 20; ++k) ASSERT_EQ(rig.step(), Status::kOk);
@@ -434,6 +449,7 @@ TEST(ComponentPickoffs, OutOfRangeIsInvalidThenAFault) {
 
 // A stopped rotor is a reading, not a failed readback: flown, low, and nothing turns NaN.
 TEST(ComponentSpin, AStoppedRotorIsFlownAndLow) {
+  GYRO_VERIFIES("SPIN-1", "SPIN-2");
   Bench b;
   ASSERT_TRUE(b.ok);
   b.port.reading.spin_hz = 0.0;
@@ -444,6 +460,7 @@ TEST(ComponentSpin, AStoppedRotorIsFlownAndLow) {
 }
 
 TEST(ComponentSpin, AFailedReadOrHugeSpinFliesTheNominal) {
+  GYRO_VERIFIES("SPIN-1", "PORT-1");
   {
     Bench b;
     ASSERT_TRUE(b.ok);
@@ -472,6 +489,7 @@ TEST(ComponentSpin, AFailedReadOrHugeSpinFliesTheNominal) {
 }
 
 TEST(ComponentSpin, ANonFiniteOrNegativeSpinFliesTheNominal) {
+  GYRO_VERIFIES("SPIN-1");
   for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -1.0}) {
     FaultyRig<double> rig;
     ASSERT_TRUE(rig.start());
@@ -564,9 +582,11 @@ void run_random_streams(std::uint64_t seed) {
 }
 
 TEST(ComponentFailOperationalProperty, RecoversInDouble) {
+  GYRO_VERIFIES("INPUT-6", "LIFE-5", "TLM-4");
   for (std::uint64_t seed = 1; seed <= 10; ++seed) run_random_streams<double>(seed);
 }
 TEST(ComponentFailOperationalProperty, RecoversInFloat) {
+  GYRO_VERIFIES("INPUT-6", "LIFE-5", "TLM-4", "RULE-8");
   for (std::uint64_t seed = 101; seed <= 110; ++seed) run_random_streams<float>(seed);
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "support/faulty_harness.hpp"
+#include "support/requirements.hpp"
 #include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -56,6 +57,7 @@ const FaultCase kCases[] = {
 };
 
 TEST(ComponentFaults, EachInjectedFaultIsDetectedInItsBound) {
+  GYRO_VERIFIES("FAULT-3", "MODE-4", "STUB-3");
   constexpr std::uint64_t kStart = 1000;  // after uncaging (600 ticks) and 400 ticks of slew
   for (const FaultCase& fc : kCases) {
     SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
@@ -93,6 +95,7 @@ TEST(ComponentFaults, EachInjectedFaultIsDetectedInItsBound) {
 }
 
 TEST(ComponentFaults, ACageRequestRecoversFromADropout) {
+  GYRO_VERIFIES("MODE-5");
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
   s.faults[0].kind = FaultKind::kDropout;
   s.faults[0].start_tick = 800;
@@ -109,6 +112,7 @@ TEST(ComponentFaults, ACageRequestRecoversFromADropout) {
 }
 
 TEST(ComponentFaults, ShortGlitchesAreCountedNotLatched) {
+  GYRO_VERIFIES("FAULT-3");
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
   s.faults[0] = {FaultKind::kInvalidReading, 800, 5, -1, 0.0};
   s.faults[1] = {FaultKind::kDropout, 900, 5, -1, 0.0};
@@ -124,6 +128,7 @@ TEST(ComponentFaults, ShortGlitchesAreCountedNotLatched) {
 }
 
 TEST(ComponentFaults, NoFalseAlarmInTenSecondsOfNoise) {
+  GYRO_VERIFIES("FAULT-3");
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
   s.pickoff.noise_rad = 2e-4;  // 10% of the residual limit, 1 sigma
   s.pickoff.lsb_rad = 1e-4;
@@ -146,6 +151,7 @@ TEST(ComponentFaults, NoFalseAlarmInTenSecondsOfNoise) {
 // ---- the spin ---------------------------------------------------------------------------------
 
 TEST(ComponentFaults, ALowSpinLatchesAfterItsPersistence) {
+  GYRO_VERIFIES("SPIN-2");
   Bench b;
   ASSERT_TRUE(b.ok);
   b.port.reading.spin_hz = 250.0;
@@ -167,6 +173,7 @@ constexpr std::size_t kWriteFailed = counter_of(kTorquerWriteFailed);
 // reports; the fault latches in the tick after the persistence-th consecutive failure (it is
 // decided before the tick's write).
 TEST(ComponentFaults, FailedWritesHoldTheLastTorqueThenLatch) {
+  GYRO_VERIFIES("PORT-2");
   FaultyRig<double> rig;
   ASSERT_TRUE(rig.start());
   for (int k = 0; k < 50; ++k) ASSERT_EQ(rig.step(), Status::kOk);
@@ -193,6 +200,7 @@ TEST(ComponentFaults, FailedWritesHoldTheLastTorqueThenLatch) {
 // Bursts of persistence - 1 failures, each followed by twice as many good writes: the
 // persistence monitor drains between the bursts and never trips.
 TEST(ComponentFaults, WriteFailuresOneInThreeNeverLatch) {
+  GYRO_VERIFIES("PORT-2", "FAULT-1");
   FaultyRig<double> rig;
   ASSERT_TRUE(rig.start());
   const std::uint32_t persistence = kSeeker.torquer_fail_persistence_ticks;
@@ -213,6 +221,7 @@ TEST(ComponentFaults, WriteFailuresOneInThreeNeverLatch) {
 // The same bursts with a single good write between them: an intermittent torquer cannot
 // dodge the persistence by succeeding now and then.
 TEST(ComponentFaults, WritesFailingFourInFiveLatch) {
+  GYRO_VERIFIES("PORT-2", "FAULT-1");
   FaultyRig<double> rig;
   ASSERT_TRUE(rig.start());
   const std::uint32_t persistence = kSeeker.torquer_fail_persistence_ticks;

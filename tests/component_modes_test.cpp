@@ -8,6 +8,7 @@
 #include "gyro/gyro_component.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "support/corrupting_port.hpp"
+#include "support/requirements.hpp"
 #include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -25,6 +26,7 @@ const GyroComponentConfig<double> kSeeker = SeekerGyro<double>::component();
 // ---- lifecycle ------------------------------------------------------------------------------
 
 TEST(ComponentLifecycle, ActivatesOnceAfterConfigureOnly) {
+  GYRO_VERIFIES("LIFE-2", "LIFE-3");
   Sil<double> sil;
   ASSERT_TRUE(sil.gyro.configure(SeekerGyro<double>::stub()).ok());
   ASSERT_EQ(sil.gyro.start(sil.R_earth_to_body, sil.body_rate), Status::kOk);
@@ -41,6 +43,7 @@ TEST(ComponentLifecycle, ActivatesOnceAfterConfigureOnly) {
 
 // A step before activation reads and writes nothing: refused, flagged kNotActive and counted.
 TEST(ComponentLifecycle, StepBeforeActivationIsRefusedAndCounted) {
+  GYRO_VERIFIES("LIFE-4");
   SimulatedGyro<double> gyro;
   CorruptingPort<double> wire{gyro};
   GyroComponent<double> c{wire};
@@ -57,6 +60,7 @@ TEST(ComponentLifecycle, StepBeforeActivationIsRefusedAndCounted) {
 // ---- caged, uncaging, free --------------------------------------------------------------------
 
 TEST(ComponentModes, CagedGimbalsFollowTheTurningBody) {
+  GYRO_VERIFIES("TORQ-1");
   Sil<double> sil;
   sil.body_rate = Vector2<double>(0.4, -0.3);
   ASSERT_TRUE(sil.start());
@@ -69,6 +73,7 @@ TEST(ComponentModes, CagedGimbalsFollowTheTurningBody) {
 }
 
 TEST(ComponentModes, UncagingFreesTheGyroAfterTheSettleTicks) {
+  GYRO_VERIFIES("MODE-2");
   Sil<double> sil;
   ASSERT_TRUE(sil.start());
   sil.run(100);
@@ -86,6 +91,7 @@ TEST(ComponentModes, UncagingFreesTheGyroAfterTheSettleTicks) {
 // A cage request while uncaging cages in the same tick; the abandoned uncaging's settle count
 // does not carry on into free mode.
 TEST(ComponentModes, ACageRequestEndsUncagingAtOnce) {
+  GYRO_VERIFIES("MODE-3");
   Sil<double> sil;
   sil.body_rate = Vector2<double>(0.4, -0.3);
   ASSERT_TRUE(sil.start());
@@ -106,6 +112,7 @@ TEST(ComponentModes, ACageRequestEndsUncagingAtOnce) {
 // Uncaging settles for uncage_settle_ticks before the gyro is free, counted from each uncage
 // request: neither an uncaging abandoned half way nor a completed one shortens the next.
 TEST(ComponentModes, EachUncagingSettlesForTheFullCount) {
+  GYRO_VERIFIES("MODE-2");
   GyroComponentConfig<double> c = kSeeker;
   c.uncage_settle_ticks = 20;
   Bench b(c);
@@ -134,6 +141,7 @@ TEST(ComponentModes, EachUncagingSettlesForTheFullCount) {
 // The uncage tick restarts the estimator at the reading: its telemetry shows the estimator it
 // starts (no residual, the prediction at the reading), not the caged one's last comparison.
 TEST(ComponentModes, TheUncageTickReportsTheRestartedEstimator) {
+  GYRO_VERIFIES("EST-1", "TLM-1");
   Bench b;
   ASSERT_TRUE(b.ok);
   b.run(5);
@@ -153,6 +161,7 @@ TEST(ComponentModes, TheUncageTickReportsTheRestartedEstimator) {
 // The uncaging starts the estimator at the body's attitude and the gimbal angles: without
 // usable navigation or an accepted reading there is nothing to start it at.
 TEST(ComponentModes, NoUncagingWithoutNavigationOrAReading) {
+  GYRO_VERIFIES("MODE-1");
   Bench b;
   ASSERT_TRUE(b.ok);
   b.run(5);
@@ -171,6 +180,7 @@ TEST(ComponentModes, NoUncagingWithoutNavigationOrAReading) {
 // A request lasts one tick: one refused is flagged and counted in its tick; one for what is
 // already in effect is not refused.
 TEST(ComponentModes, OnlyARefusedRequestIsFlagged) {
+  GYRO_VERIFIES("MODE-6");
   Sil<double> sil;
   ASSERT_TRUE(sil.start());
   sil.run(100);
@@ -199,6 +209,7 @@ TEST(ComponentModes, OnlyARefusedRequestIsFlagged) {
 // The estimator, which followed its own prediction while the readings were off, restarts at
 // the first good reading: no residual, the prediction the measurement.
 TEST(ComponentModes, LeavingSafeModeRestartsTheEstimator) {
+  GYRO_VERIFIES("MODE-5");
   SimulatedGyro<double> gyro;
   CorruptingPort<double> wire{gyro};
   GyroComponent<double> component{wire};
@@ -238,6 +249,7 @@ TEST(ComponentModes, LeavingSafeModeRestartsTheEstimator) {
 // tick) keeps whatever fill the monitor had: leaving it must start the monitor afresh, or a
 // residual just short of its persistence before the fault trips it at the first residual after.
 TEST(ComponentModes, LeavingSafeModeResetsTheResidualMonitor) {
+  GYRO_VERIFIES("FAULT-2");
   Bench b;
   ASSERT_TRUE(b.ok);
   const std::uint32_t n = kSeeker.residual_persistence_ticks;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "support/requirements.hpp"
 #include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -50,6 +51,7 @@ struct Turn {
 };
 
 TEST(ComponentStopProtection, FreeGyroStaysOffItsStop) {
+  GYRO_VERIFIES("STOP-1", "STOP-2");
   const Turn turns[] = {
       {{0.0, 0.5}, {0.0, 0.0}},   {{0.5, 0.0}, {0.0, 0.0}},    {{-0.6, 0.6}, {0.0, 0.0}},
       {{0.0, 0.9}, {0.0, 0.0}},   {{0.3, 0.0}, {-0.4, 0.0}},  // the command outward with the turn
@@ -71,6 +73,7 @@ TEST(ComponentStopProtection, FreeGyroStaysOffItsStop) {
 }
 
 TEST(ComponentStopProtection, HeldOffTheStopWithoutNavigation) {
+  GYRO_VERIFIES("STOP-5");
   // Without navigation the body's rate is unknown: the bound still pulls the gimbal back from
   // beyond the protection cone, so it settles where the pull matches the turn.
   Sil<double> sil;
@@ -85,6 +88,7 @@ TEST(ComponentStopProtection, HeldOffTheStopWithoutNavigation) {
 }
 
 TEST(ComponentStopProtection, UncagingTorquesOnlyWhenTheBoundActs) {
+  GYRO_VERIFIES("TORQ-2", "STOP-1");
   GyroComponentConfig<double> c = SeekerGyro<double>::component();
   c.uncage_settle_ticks = 20000;  // uncaging for the whole flight (10 s, the contract's longest)
   Sil<double> sil;
@@ -104,6 +108,7 @@ TEST(ComponentStopProtection, UncagingTorquesOnlyWhenTheBoundActs) {
 }
 
 TEST(ComponentStopProtection, BeyondAuthorityFlaggedBeforeContact) {
+  GYRO_VERIFIES("STOP-3");
   for (const Vector2<double>& body : {Vector2<double>(0.0, 2.0), Vector2<double>(1.5, 0.0)}) {
     Sil<double> sil;
     ASSERT_TRUE(sil.start());
@@ -122,6 +127,7 @@ TEST(ComponentStopProtection, BeyondAuthorityFlaggedBeforeContact) {
 // 0.66 rad/s where the bound asks a pull-back of 1.0: saturated, yet moving in, which is no
 // danger. With the body pitching away at 2 rad/s the same torque leaves it moving out.
 TEST(ComponentStopProtection, BeyondAuthorityOnlyWhenMovingOut) {
+  GYRO_VERIFIES("STOP-3");
   GyroComponentConfig<double> c = SeekerGyro<double>::component();
   c.max_torque = 0.05;
   c.uncage_settle_ticks = 1;
@@ -142,6 +148,7 @@ TEST(ComponentStopProtection, BeyondAuthorityOnlyWhenMovingOut) {
 }
 
 TEST(ComponentStopProtection, CagedGyroStaysOffItsStop) {
+  GYRO_VERIFIES("STOP-2");
   Sil<double> sil;
   ASSERT_TRUE(sil.start());
   sil.body_rate = Vector2<double>(0.6, -0.6);
@@ -154,6 +161,7 @@ TEST(ComponentStopProtection, CagedGyroStaysOffItsStop) {
 // A slew commanded toward the stop is cut to the bound's outward rate and settles at the
 // protection cone (0.5 - 0.05 rad) instead of running into the stop; slewing back out is flown.
 TEST(ComponentStopProtection, ASlewOutwardIsHeldAtTheCone) {
+  GYRO_VERIFIES("STOP-1");
   Sil<double> sil;
   ASSERT_TRUE(sil.start());
   ASSERT_TRUE(sil.uncage());

@@ -3,6 +3,7 @@
 // alike.
 #include <gtest/gtest.h>
 
+#include "support/requirements.hpp"
 #include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -19,6 +20,7 @@ const GyroComponentConfig<double> kSeeker = SeekerGyro<double>::component();
 
 // 600 Hz nutation (H/J): a 1 kHz tick samples it less than twice a period; 2 kHz, more.
 TEST(ComponentTelemetry, AnAliasedNutationIsFlaggedUnresolved) {
+  GYRO_VERIFIES("TLM-3");
   GyroComponentConfig<double> c = kSeeker;
   SimulatedGyroConfig<double> s = SeekerGyro<double>::stub();
   c.tick_s = s.tick_s = 1e-3;
@@ -36,6 +38,7 @@ TEST(ComponentTelemetry, AnAliasedNutationIsFlaggedUnresolved) {
 // The flag speaks of the estimate (its nutation cannot be checked against aliased pickoffs):
 // none before the estimator has started, raised on the tick it starts.
 TEST(ComponentTelemetry, UnresolvedOnlyOnceThereIsAnEstimate) {
+  GYRO_VERIFIES("TLM-3");
   GyroComponentConfig<double> c = kSeeker;
   c.tick_s = 1e-3;  // 600 Hz nutation at a 1 kHz tick: aliased
   c.cage_gain_1_s = 10;
@@ -56,6 +59,7 @@ TEST(ComponentTelemetry, UnresolvedOnlyOnceThereIsAnEstimate) {
 // The estimator's small-angle check reaches the telemetry: with a limit below one tick's
 // rotation of the turning body every predicted tick is flagged and counted; a flag, not a fault.
 TEST(ComponentTelemetry, SmallAngleExceededIsFlaggedAndCounted) {
+  GYRO_VERIFIES("EST-5", "TLM-2");
   for (const double limit : {1e-3, 0.01}) {
     Sil<double> sil;
     sil.body_rate = Vector2<double>(2.4, -1.8);  // 1.5e-3 rad per 0.5 ms tick
@@ -81,6 +85,7 @@ TEST(ComponentTelemetry, SmallAngleExceededIsFlaggedAndCounted) {
 // ---- determinism --------------------------------------------------------------------------------
 
 TEST(ComponentDeterminism, TwoRunsGiveBitIdenticalTelemetry) {
+  GYRO_VERIFIES("RULE-6");
   auto run = [](auto tag) {
     using T = decltype(tag);
     Sil<T> sil;

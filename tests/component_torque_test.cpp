@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "support/requirements.hpp"
 #include "support/scripted_bench.hpp"
 #include "support/sil_fixture.hpp"
 
@@ -37,6 +38,7 @@ Vector2<double> mean_true_rate(Sil<double>& sil, const Vector2<double>& cmd, int
 // With friction f the report's torque law T = (H w2, -H w1) precesses at k5, k6 instead of
 // the command: the error is (f/H)(w2, -w1) to first order. The exact inverse removes it.
 TEST(ComponentSlew, FlownAtTheRateWithoutFrictionCoupling) {
+  GYRO_VERIFIES("TORQ-6");
   const Vector2<double> cmd(0.3, -0.2);
   const double h = angular_momentum(400.0, 3e-5), f = 4e-4;
   for (bool compensate : {true, false}) {
@@ -67,6 +69,7 @@ TEST(ComponentSlew, FlownAtTheRateWithoutFrictionCoupling) {
 }
 
 TEST(ComponentSlew, ClampedPerAxisAndSaturatedInDirection) {
+  GYRO_VERIFIES("TORQ-3", "TORQ-5");
   GyroComponentConfig<double> c = kSeeker;
   c.max_pitch_rate_rad_s = 0.2;
   c.max_yaw_rate_rad_s = 0.5;
@@ -101,6 +104,7 @@ TEST(ComponentSlew, ClampedPerAxisAndSaturatedInDirection) {
 // The step: a gimbal reading that appears while caged, whose loop asks a constant rate from
 // then on.
 TEST(ComponentShaper, ShapesAtFifteenTicksAndNotBeyond) {
+  GYRO_VERIFIES("SHAPE-1");
   GyroComponentConfig<double> c = kSeeker;
   c.min_spin_hz = 1.0;
   const double j = c.pitch_inertia;
@@ -133,6 +137,7 @@ TEST(ComponentShaper, ShapesAtFifteenTicksAndNotBeyond) {
 // the cage loop's torques; caged again at a zero reading with the body at rest, the law asks
 // for nothing, and nothing from before the fault may be blended in.
 TEST(ComponentShaper, LeavingSafeModeStartsFromRest) {
+  GYRO_VERIFIES("SHAPE-4");
   GyroComponentConfig<double> c = kSeeker;
   c.min_spin_hz = 10.0;
   const double beta_dt = kPi<double> / 7.5;  // taps 4 ticks apart

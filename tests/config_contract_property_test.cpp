@@ -28,6 +28,7 @@
 #include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
 #include "gyro/torque_shaper.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -238,6 +239,7 @@ std::uint64_t first_seed() {
 }
 
 TEST(ConfigContractProperty, GivenAcceptedConfigsWHENFlownTHENNoLockOutFaultOrStop) {
+  GYRO_VERIFIES("CONF-7");
   const std::uint64_t n = wanted();
   std::uint64_t accepted = 0, drawn = 0, failed = 0, ticks = 0;
   const auto t0 = std::chrono::steady_clock::now();

@@ -16,6 +16,7 @@
 #include "gyro/report_sample.hpp"
 #include "gyro/seeker_example.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -29,6 +30,7 @@ std::map<std::string, Field> rows_of(const Config& c) {
 }
 
 TEST(ConfigFields, GivenEachTableWHENVisitedTHENEveryNameIsUniqueAndRefusalsAreFailures) {
+  GYRO_VERIFIES("CONF-1");
   const auto check_table = [](const auto& config) {
     int rows = 0;
     std::set<std::string> names;
@@ -55,6 +57,7 @@ TEST(ConfigFields, GivenEachTableWHENVisitedTHENEveryNameIsUniqueAndRefusalsAreF
 // Each number's own rule, field by field: a breach is refused naming that field with the
 // row's status (and a NaN with kNonFiniteInput).
 TEST(ConfigFields, GivenTheSeekerComponentWHENOneNumberBreaksItsRuleTHENCheckNamesIt) {
+  GYRO_VERIFIES("CONF-1", "CONF-2");
   const GyroComponentConfig<double> good = SeekerExample<double>::component();
   ASSERT_TRUE(check(good).ok());
   int breached = 0;
@@ -102,6 +105,7 @@ TEST(ConfigFields, GivenTheSeekerComponentWHENOneNumberBreaksItsRuleTHENCheckNam
 // Every number of the stub's and the model's tables has a finite range, a unit (or none for
 // a ratio) and a reason; only counts that may take any 64-bit value are left unbounded.
 TEST(ConfigFields, GivenTheStubAndModelTablesWHENListedTHENEveryNumberHasBothBoundsAndAReason) {
+  GYRO_VERIFIES("CONF-1");
   const std::set<std::string> any_value = {"seed", "start_tick", "duration_ticks"};
   int numbers = 0;
   const auto expect_bounded = [&](const auto& config) {
@@ -140,6 +144,7 @@ TEST(ConfigFields, GivenTheStubAndModelTablesWHENListedTHENEveryNumberHasBothBou
 
 // The configurations the repository ships keep every new bound.
 TEST(ConfigFields, GivenTheShippedConfigurationsWHENCheckedTHENAccepted) {
+  GYRO_VERIFIES("CONF-8");
   EXPECT_TRUE(check(SeekerExample<double>::stub()).ok());
   EXPECT_TRUE(check(SeekerExample<float>::stub()).ok());
   EXPECT_TRUE(check(SeekerExample<double>::gimbal()).ok());
@@ -157,6 +162,7 @@ TEST(ConfigFields, GivenTheShippedConfigurationsWHENCheckedTHENAccepted) {
 // A value beyond one of the stub's or the model's bounds: refused, and the message names the
 // field, the value and the bound.
 TEST(ConfigFields, GivenAValueBeyondAStubOrModelBoundWHENCheckedTHENTheMessageNamesTheField) {
+  GYRO_VERIFIES("CONF-1");
   const auto message = [](const ConfigCheck& r) {
     char buf[256];
     (void)format_refusal(r, nullptr, buf, sizeof buf);
@@ -229,6 +235,7 @@ TEST(ConfigFields, GivenAValueBeyondAStubOrModelBoundWHENCheckedTHENTheMessageNa
 }
 
 TEST(ConfigFields, GivenADoubleStubConfigurationWHENCastToFloatTHENEveryFieldIsCarried) {
+  GYRO_VERIFIES("RULE-8");
   SimulatedGyroConfig<double> d = SeekerExample<double>::stub();
   d.seed = 77;
   d.gyro.errors.yaw.coulomb_friction_rad_s = 0.125;
@@ -330,6 +337,7 @@ void expect_documented(const std::string& heading, const Config& c) {
 
 // The docs' generated tables hold what gyro_config_doc would write from the field tables.
 TEST(ConfigFields, GivenTheGeneratedDocTablesWHENRegeneratedTHENUnchanged) {
+  GYRO_VERIFIES("CONF-8");
   for (const doc::Generated& g : doc::generated_tables()) {
     const std::string page = doc::read_file(std::string(GYRO_SOURCE_DIR) + "/docs/" + g.file);
     std::string regenerated = page;
@@ -340,6 +348,7 @@ TEST(ConfigFields, GivenTheGeneratedDocTablesWHENRegeneratedTHENUnchanged) {
 }
 
 TEST(ConfigFields, GivenTheScenarioDocsWHENComparedWithTheTablesTHENTheyAgree) {
+  GYRO_VERIFIES("CONF-8");
   const GyroComponentConfig<double> component{};
   const GimbalPlantConfig<double> gimbal{};
   expect_documented("### `component` (the flight software)", component);
@@ -400,6 +409,7 @@ void expect_names_round_trip(E unnamed_default) {
 }
 
 TEST(ConfigFields, GivenEachEnumerationWHENANameIsLookedUpTHENItsOwnEnumeratorComesBack) {
+  GYRO_VERIFIES("TLM-5");
   expect_names_round_trip(Status::kInputIgnored);
   expect_names_round_trip(TorquerAxes::kGimbal);
   expect_names_round_trip(ModeRequest::kUncage);
@@ -412,6 +422,7 @@ TEST(ConfigFields, GivenEachEnumerationWHENANameIsLookedUpTHENItsOwnEnumeratorCo
 }
 
 TEST(EnumNames, AValueOutsideTheEnumerationIsNamedAsUnknown) {
+  GYRO_VERIFIES("TLM-5");
   // A corrupted value (e.g. from telemetry) is named, never read out of bounds.
   EXPECT_STREQ(enum_name_or(static_cast<GyroMode>(99), "unknown"), "unknown");
   EXPECT_STREQ(enum_name_or(GyroMode::kUncaging, "unknown"), "uncaging");

@@ -12,6 +12,7 @@
 #include "gyro/component_config.hpp"
 #include "gyro/seeker_example.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -47,6 +48,7 @@ using Scalars = ::testing::Types<float, double>;
 TYPED_TEST_SUITE(ExactStepCheck, Scalars);
 
 TYPED_TEST(ExactStepCheck, GivenAComponentRotorWhoseStepOverflowsWhenConfiguredThenTheFieldResponsibleIsNamed) {
+  GYRO_VERIFIES("CONF-3");
   using T = TypeParam;
   for (const Case<T>& k : overflowing_cases<T>()) {
     GyroComponentConfig<T> c = SeekerExample<T>::component();
@@ -66,6 +68,7 @@ TYPED_TEST(ExactStepCheck, GivenAComponentRotorWhoseStepOverflowsWhenConfiguredT
 }
 
 TYPED_TEST(ExactStepCheck, GivenAStubRotorWhoseStepOverflowsWhenConfiguredThenRefusedNamingTheFieldAndNothingStarts) {
+  GYRO_VERIFIES("STUB-4");
   using T = TypeParam;
   for (const Case<T>& k : overflowing_cases<T>()) {
     SimulatedGyroConfig<T> c = SeekerExample<T>::stub();
@@ -88,6 +91,7 @@ TYPED_TEST(ExactStepCheck, GivenAStubRotorWhoseStepOverflowsWhenConfiguredThenRe
 // spin's own bound (100 kHz) comes first; the exact step's limit, far beyond it, is one of the
 // representation.
 TEST(ExactStepCheck, GivenTheLargestSpinTheStubAcceptsThenItsFirstStepSucceeds) {
+  GYRO_VERIFIES("STUB-4");
   SimulatedGyroConfig<double> c = SeekerExample<double>::stub();
   c.plant = PlantKind::kReport;  // the exact step is the report's plant's
   const auto largest_accepted = [&c](auto accepts) {
@@ -118,6 +122,7 @@ TEST(ExactStepCheck, GivenTheLargestSpinTheStubAcceptsThenItsFirstStepSucceeds) 
 }
 
 TEST(ExactStepCheck, GivenTheShippedExampleGyrosThenBothChecksAccept) {
+  GYRO_VERIFIES("CONF-8");
   EXPECT_TRUE(check(SeekerExample<double>::component()).ok());
   EXPECT_TRUE(check(SeekerExample<float>::component()).ok());
   EXPECT_TRUE(check(SeekerExample<double>::stub()).ok());

@@ -13,6 +13,7 @@
 
 #include "gyro/gyro_model.hpp"
 #include "support/gimbal_support.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -99,6 +100,7 @@ struct LimitCase {
 class GimbalReportLimit : public ::testing::TestWithParam<LimitCase> {};
 
 TEST_P(GimbalReportLimit, GivenTheReportsDeviceWhenTheStepIsHalvedThenTheDifferenceFromGyroModelFallsFourfold) {
+  GYRO_VERIFIES("STUB-1");
   const LimitCase lc = GetParam();
   const double dts[] = {2.5e-4, 1.25e-4, 6.25e-5};
   double e[3] = {};

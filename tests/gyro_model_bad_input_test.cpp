@@ -1,6 +1,7 @@
 // GyroModel refuses bad configuration and bad step inputs with a status and leaves its state
 // bit-identical; identical inputs give bit-identical outputs.
 #include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -81,6 +82,7 @@ GyroModel<T> busy_model() {
 }
 
 TYPED_TEST(GyroBadInput, GivenEachBadConfigFieldThenRefusedWithItsStatusAndNameAndStateUntouched) {
+  GYRO_VERIFIES("MODEL-6", "RULE-9");
   using T = TypeParam;
   const std::vector<ConfigCase<T>> cases = config_cases<T>();
   EXPECT_GT(cases.size(), 80u);
@@ -121,6 +123,7 @@ TYPED_TEST(GyroBadInput, GivenEachBadConfigFieldThenRefusedWithItsStatusAndNameA
 }
 
 TYPED_TEST(GyroBadInput, GivenStepBeforeConfigureOrUncageThenNotConfigured) {
+  GYRO_VERIFIES("MODEL-6");
   using T = TypeParam;
   const GyroStepInput<T> in = step_input<T>(T(1e-3));
   GyroModel<T> g;
@@ -147,6 +150,7 @@ Matrix3<T> scaled(T s) {
 }
 
 TYPED_TEST(GyroBadInput, GivenEachBadStepInputThenItsStatusAndStateBitIdentical) {
+  GYRO_VERIFIES("MODEL-6", "RULE-9");
   using T = TypeParam;
   const T nan = std::numeric_limits<T>::quiet_NaN();
   const T inf = std::numeric_limits<T>::infinity();
@@ -212,6 +216,7 @@ TYPED_TEST(GyroBadInput, GivenEachBadStepInputThenItsStatusAndStateBitIdentical)
 // Finite inputs whose torque overflows in the torquer model (cross-coupling adds a share
 // of the other axis' torque): a numerical overflow, not a non-finite input, and no change.
 TYPED_TEST(GyroBadInput, GivenFiniteTorqueThatOverflowsThroughCrossCouplingThenNumericalOverflowAndStateBitIdentical) {
+  GYRO_VERIFIES("MODEL-6", "EXACT-5");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.errors.yaw.torquer_cross_coupling = T(0.5);
@@ -228,6 +233,7 @@ TYPED_TEST(GyroBadInput, GivenFiniteTorqueThatOverflowsThroughCrossCouplingThenN
 // Without spin a finite torque accelerates the gimbals freely (w' = T/J): over 100 s the
 // largest torque overflows the rates inside the exact step.
 TYPED_TEST(GyroBadInput, GivenNoSpinAndLargestTorqueOver100sThenNumericalOverflowAndStateBitIdentical) {
+  GYRO_VERIFIES("MODEL-6", "EXACT-5");
   using T = TypeParam;
   GyroModel<T> g = uncaged_model<T>(test_config<T>(), Vector2<T>(T(0.2), T(-0.1)), Vector2<T>(T(0.01), T(0.02)),
                                     some_body_attitude<T>());
@@ -240,6 +246,7 @@ TYPED_TEST(GyroBadInput, GivenNoSpinAndLargestTorqueOver100sThenNumericalOverflo
 }
 
 TYPED_TEST(GyroBadInput, GivenBadUncageInputThenRefusedAndStateBitIdentical) {
+  GYRO_VERIFIES("MODEL-6");
   using T = TypeParam;
   const T nan = std::numeric_limits<T>::quiet_NaN();
   const T inf = std::numeric_limits<T>::infinity();
@@ -292,6 +299,7 @@ std::vector<Observed<T>> busy_run() {
 }
 
 TYPED_TEST(GyroDeterminism, GivenTwoIdenticalRunsThenEveryStepIsBitIdentical) {
+  GYRO_VERIFIES("MODEL-6", "RULE-6");
   using T = TypeParam;
   const std::vector<Observed<T>> a = busy_run<T>();
   const std::vector<Observed<T>> b = busy_run<T>();

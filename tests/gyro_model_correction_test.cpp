@@ -10,6 +10,7 @@
 
 #include "gyro/gyro_model.hpp"
 #include "gyro/report_sample.hpp"
+#include "support/requirements.hpp"
 #include "support/same_bits.hpp"
 
 namespace gyro {
@@ -17,6 +18,7 @@ namespace gyro_model_correction_test {
 
 // correct_attitude refuses what it cannot use and then changes nothing.
 TEST(GyroModelCorrection, ABadInputIsRefusedAndChangesNothing) {
+  GYRO_VERIFIES("MODEL-6");
   GyroModel<double> g;
   ASSERT_TRUE(g.configure(ReportSample<double>::config()).ok());
   const Matrix3<double> r = Matrix3<double>::Identity();
@@ -40,6 +42,7 @@ TEST(GyroModelCorrection, ABadInputIsRefusedAndChangesNothing) {
 }
 
 TEST(GyroModelCorrection, BackInsideTheConeClearsTheLimitFlag) {
+  GYRO_VERIFIES("MODEL-4", "MODEL-6");
   const GyroModelConfig<double> c = ReportSample<double>::config();  // cone 0.436 rad
   GyroModel<double> g;
   ASSERT_TRUE(g.configure(c).ok());
@@ -58,6 +61,7 @@ TEST(GyroModelCorrection, BackInsideTheConeClearsTheLimitFlag) {
 // zero, a yaw not so resolved would move the yaw angle by yaw / cos(pitch) (4.7 % more at
 // 0.3 rad). First order in the correction: 1e-5 rad leaves terms of 1e-10.
 TEST(GyroModelCorrection, EachGimbalAngleMovesByItsOwnPart) {
+  GYRO_VERIFIES("MODEL-6", "EST-3");
   const GyroModelConfig<double> c = ReportSample<double>::config();
   GyroModel<double> g;
   ASSERT_TRUE(g.configure(c).ok());
@@ -80,6 +84,7 @@ TEST(GyroModelCorrection, EachGimbalAngleMovesByItsOwnPart) {
 // if the correction had never been made (it turned an attitude that uncaging replaced, against
 // the body of its own time).
 TEST(GyroModelCorrection, ANewUncagingReplacesIt) {
+  GYRO_VERIFIES("MODEL-6");
   const GyroModelConfig<double> c = ReportSample<double>::config();
   const Matrix3<double> first = Eigen::AngleAxisd(0.3, Vector3<double>(1, -2, 0.5).normalized()).toRotationMatrix();
   const Matrix3<double> second = Eigen::AngleAxisd(-0.8, Vector3<double>(0.2, 1, -1).normalized()).toRotationMatrix();
@@ -104,6 +109,7 @@ TEST(GyroModelCorrection, ANewUncagingReplacesIt) {
 // attitudes differ by |c| |a| / 2 (1e-5 rad here), with it by less than the third-order
 // bound |a| |c| (|a| + |c|) / 12 = 2e-8 rad.
 TEST(GyroModelCorrection, AtTheNextStepComesBeforeTheStep) {
+  GYRO_VERIFIES("MODEL-6", "EST-3");
   const GyroModelConfig<double> c = ReportSample<double>::config();
   const Matrix3<double> body = Eigen::AngleAxisd(0.3, Vector3<double>(1, -2, 0.5).normalized()).toRotationMatrix();
   const auto uncaged = [&](GyroModel<double>& g) {

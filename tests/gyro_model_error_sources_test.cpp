@@ -4,6 +4,7 @@
 // type is refused.
 #include "gyro/report_sample.hpp"
 #include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
+#include "support/requirements.hpp"
 #include "support/same_bits.hpp"
 
 namespace gyro {
@@ -29,6 +30,7 @@ Vector2<double> steady_rate_with(const GyroModelConfig<T>& c, const Vector2<T>& 
 }
 
 TYPED_TEST(GyroErrorSources, GivenStaticDriftThenSteadyRateShiftsByExactlyTheDrift) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   const Vector2<T> cmd(T(0.05), T(-0.1));
   {
@@ -60,6 +62,7 @@ TYPED_TEST(GyroErrorSources, GivenStaticDriftThenSteadyRateShiftsByExactlyTheDri
 // With friction the drift, being a torque like the command's, is cross-coupled by f through
 // the dynamics (eq 11's k5, k6) and by nothing else: friction is not counted twice.
 TYPED_TEST(GyroErrorSources, GivenStaticDriftWithFrictionThenSteadyRateIsTheDynamicsOwnCouplingOnly) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.friction = T(5);
@@ -96,6 +99,7 @@ struct Erection<float> {
 // a' = -k a and decays as exp(-k t). The decaying torque also leaves the gyroscopic lag
 // J1 w1'/H on the other axis: w2 = -J1 w1'/H, whose integral is -J1 k a0/H (1 - exp(-k t)).
 TYPED_TEST(GyroErrorSources, GivenInPlaneErectionOnPitchThenPitchGimbalDecaysExponentiallyAtRateK) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   const Matrix3<T> body = some_body_attitude<T>();
   for (const double a0 : {0.01, -0.01}) {
@@ -123,6 +127,7 @@ TYPED_TEST(GyroErrorSources, GivenInPlaneErectionOnPitchThenPitchGimbalDecaysExp
 }
 
 TYPED_TEST(GyroErrorSources, GivenInPlaneErectionOnYawThenYawGimbalDecaysExponentiallyAtRateK) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   const Matrix3<T> body = some_body_attitude<T>();
   GyroModelConfig<T> c = test_config<T>();
@@ -148,6 +153,7 @@ TYPED_TEST(GyroErrorSources, GivenInPlaneErectionOnYawThenYawGimbalDecaysExponen
 // Cross-plane erection: drift = -k (other axis' gimbal angle). A gyro yawed by y0 and turned
 // about its own pitch axis keeps its azimuth y0 exactly and rises at -k y0: linear in t.
 TYPED_TEST(GyroErrorSources, GivenCrossPlaneErectionOnPitchThenYawGimbalAngleDrivesPitchAtMinusKTimesIt) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   const double k = 0.5, y0 = 0.02;
@@ -162,6 +168,7 @@ TYPED_TEST(GyroErrorSources, GivenCrossPlaneErectionOnPitchThenYawGimbalAngleDri
 // The same on yaw: a gyro pitched by p0 turned about its own yaw axis by psi has azimuth
 // atan(tan(psi)/cos(p0)) and elevation asin(sin(p0) cos(psi)) ~ p0, so psi ~ -k p0 t.
 TYPED_TEST(GyroErrorSources, GivenCrossPlaneErectionOnYawThenPitchGimbalAngleDrivesYawAtMinusKTimesIt) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   const double k = 0.5, p0 = 0.02;
@@ -177,6 +184,7 @@ TYPED_TEST(GyroErrorSources, GivenCrossPlaneErectionOnYawThenPitchGimbalAngleDri
 // g-sensitive drift: the report's s * (a/g - sign(a)) beyond 1 g, zero below; lateral
 // acceleration drifts pitch, normal acceleration drifts yaw. Gravity in ft/s^2 here.
 TYPED_TEST(GyroErrorSources, GivenGSensitiveDriftThenDriftIsProportionalToAccelerationBeyondOneG) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   const double g0 = 32.1725, sp = 0.004, sy = 0.006;
@@ -210,6 +218,7 @@ TYPED_TEST(GyroErrorSources, GivenGSensitiveDriftThenDriftIsProportionalToAccele
 
 // Torquer cross-coupling: c_p of the yaw torquer command leaks into pitch, whatever the spin.
 TYPED_TEST(GyroErrorSources, GivenTorquerCrossCouplingThenPureYawCommandDriftsPitchByCpTimesIt) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   for (const T spin : {kSpinHz<T>, T(40)}) {
     GyroModelConfig<T> c = test_config<T>();
@@ -243,6 +252,7 @@ TYPED_TEST(GyroErrorSources, GivenTorquerCrossCouplingThenPureYawCommandDriftsPi
 // Coulomb friction: a drift of constant size against the rate, none at rest, and a gimbal
 // whose command is below the friction stays put (it is not pushed backwards).
 TYPED_TEST(GyroErrorSources, GivenCoulombFrictionThenDriftOpposesTheRate) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.errors.pitch.coulomb_friction_rad_s = T(0.02);
@@ -282,6 +292,7 @@ TYPED_TEST(GyroErrorSources, GivenCoulombFrictionThenDriftOpposesTheRate) {
 // nutation grows without bound and the report's gyro, f = 5, settles into a 2 rad/s limit
 // cycle.)
 TYPED_TEST(GyroErrorSources, GivenCoulombFrictionOnANutatingGyroThenTheNutationIsNotFed) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   const Vector2<T> cmd(T(0.1), T(0));
   for (const T f : {T(0), T(5)}) {
@@ -314,6 +325,7 @@ TYPED_TEST(GyroErrorSources, GivenCoulombFrictionOnANutatingGyroThenTheNutationI
 }
 
 TYPED_TEST(GyroErrorSources, GivenCoulombFrictionAndGyroAtRestThenItDoesNotMove) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.errors.pitch.coulomb_friction_rad_s = T(0.02);
@@ -343,6 +355,7 @@ TYPED_TEST_SUITE(GyroGimbalLimits, Scalars);
 // sin a cos phi), a from body x. The flag is raised exactly while a exceeds the cone, the
 // step completes all the same, and it clears when the body comes back.
 TYPED_TEST(GyroGimbalLimits, GivenBodyTurningAwayFromInertiallyHeldGyroThenConeFlagRaisedOnlyOutsideTheCone) {
+  GYRO_VERIFIES("MODEL-4", "EST-5");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.gimbal_cone_limit_rad = T(0.3);
@@ -373,6 +386,7 @@ TYPED_TEST(GyroGimbalLimits, GivenBodyTurningAwayFromInertiallyHeldGyroThenConeF
 // Per-axis limits compared as angles with |angle| (the listing compared an angle with a
 // cosine, and only positive angles), pitch against the pitch limit, yaw against the yaw limit.
 TYPED_TEST(GyroGimbalLimits, GivenPerAxisLimitsThenEachAxisIsComparedAsAnAngleWithItsOwnLimit) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.gimbal_cone_limit_rad = T(1.2);
@@ -399,6 +413,7 @@ TYPED_TEST(GyroGimbalLimits, GivenPerAxisLimitsThenEachAxisIsComparedAsAnAngleWi
 }
 
 TYPED_TEST(GyroGimbalLimits, GivenPerAxisLimitsZeroThenOnlyTheConeCounts) {
+  GYRO_VERIFIES("MODEL-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.gimbal_cone_limit_rad = T(1.2);
@@ -430,6 +445,7 @@ TYPED_TEST_SUITE(GyroSmallAngle, Scalars);
 // No nutation (uncaged at the commanded rate): the step's angle is rate * dt, and the flag
 // follows |theta| or |psi| against the limit, each axis on its own.
 TYPED_TEST(GyroSmallAngle, GivenStepTooLongForTheRatesThenFlagRaised) {
+  GYRO_VERIFIES("MODEL-4", "EST-5");
   using T = TypeParam;
   const GyroModelConfig<T> c = test_config<T>();
   struct Case {
@@ -463,6 +479,7 @@ TYPED_TEST(GyroSmallAngle, GivenStepTooLongForTheRatesThenFlagRaised) {
 // J1 = J2 = J, f = 0, no torque: the rate vector turns at beta = H/J, and the angles swing
 // on a circle of radius |w0|/beta. Flag when that exceeds the limit, with tiny steps.
 TYPED_TEST(GyroSmallAngle, GivenNutationAmplitudeAboveTheLimitThenFlagRaised) {
+  GYRO_VERIFIES("MODEL-4", "EST-5");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.pitch_inertia = T(2);
@@ -489,6 +506,7 @@ TYPED_TEST(GyroSmallAngle, GivenNutationAmplitudeAboveTheLimitThenFlagRaised) {
 }
 
 TEST(GyroSmallAngleReportSample, GivenReportSampleThenNoStepRaisesTheFlag) {
+  GYRO_VERIFIES("MODEL-1");
   using Report = ReportSample<double>;
   int steps = 0, raised = 0;
   double largest_amplitude = 0, largest_angle = 0;
@@ -514,6 +532,7 @@ TEST(GyroSmallAngleReportSample, GivenReportSampleThenNoStepRaisesTheFlag) {
 // model keeps its state, rather than carrying an infinite torque into it. configure() bounds
 // the drifts; the g-sensitive one still grows with the step's acceleration.
 TEST(GyroModelErrorSources, ADriftTorqueBeyondDoubleIsRefused) {
+  GYRO_VERIFIES("MODEL-6");
   GyroModelConfig<double> c = ReportSample<double>::config();
   c.errors.pitch.g_sensitive_drift_rad_s = 1.0;  // its bound: accepted by configure
   GyroModel<double> g;

@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "gyro/gyro_model.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -74,6 +75,7 @@ PrecessionRun run_outer_torque_precession(double dt) {
 }
 
 TEST(GyroModelGimbalPrecession, GivenAnOuterTorqueWhenThePitchSweepsThenSinPitchFallsAtTOverHToSecondOrder) {
+  GYRO_VERIFIES("MODEL-5", "PORT-3");
   const PrecessionRun coarse = run_outer_torque_precession(2e-3);
   const PrecessionRun fine = run_outer_torque_precession(1e-3);
   // The sweep: from 0.5 rad to asin(sin 0.5 - 0.5) = -0.021 rad, the lever 1 / cos th from
@@ -93,6 +95,7 @@ TEST(GyroModelGimbalPrecession, GivenAnOuterTorqueWhenThePitchSweepsThenSinPitch
 // the spin axis: the gyro's axes do not roll, the gimbal's roll with the body, so the twist
 // between them is the body's roll.
 TEST(GyroModelGimbalFrame, GivenTheReportsTorquersWhenTheBodyRollsAboutTheSpinAxisThenTheFrameTwistsWithIt) {
+  GYRO_VERIFIES("MODEL-5");
   const GyroModelConfig<double> c = seeker_rotor(TorquerAxes::kGyro);
   GyroModel<double> g;
   ASSERT_TRUE(g.configure(c).ok());

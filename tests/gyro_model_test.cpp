@@ -10,6 +10,7 @@
 // And its transition cache: a step of a new dt is bit for bit a fresh model's step of that dt.
 #include "gyro/report_sample.hpp"
 #include "support/gyro_model_support.hpp"  // gtest, Eigen, GyroModel and the standard headers
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -62,6 +63,7 @@ std::vector<double> orthonormality_run(long steps, const std::vector<long>& chec
 }
 
 TEST(GyroModelOrthonormality, GivenNutatingSlewingGyroUnderTurningBodyWhen1e7DoubleStepsThenAttitudeStaysOrthonormalTo1e12) {
+  GYRO_VERIFIES("MODEL-3");
 #if defined(GYRO_TEST_UNDER_EMULATION)
   // Under qemu-user 1e7 steps take minutes; the host runs the full 1e7.
   const std::vector<long> at = {1000, 100000, 1000000};
@@ -81,6 +83,7 @@ TEST(GyroModelOrthonormality, GivenNutatingSlewingGyroUnderTurningBodyWhen1e7Dou
 }
 
 TEST(GyroModelOrthonormality, GivenSameRunInFloatWhen1e6StepsThenAttitudeStaysOrthonormalTo1e5) {
+  GYRO_VERIFIES("MODEL-3", "RULE-8");
   const std::vector<long> at = {1000, 100000, 1000000};
   double worst = 0;
   const std::vector<double> err = orthonormality_run<float>(1000000, at, worst);
@@ -101,6 +104,7 @@ class GyroSlewLimits : public ::testing::Test {};
 TYPED_TEST_SUITE(GyroSlewLimits, Scalars);
 
 TYPED_TEST(GyroSlewLimits, GivenDifferentPitchAndYawLimitsWhenCommandedThenSteadyPrecessionIsTheCommandLimitedPerAxis) {
+  GYRO_VERIFIES("EXACT-3");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.max_pitch_rate_rad_s = T(0.1);
@@ -129,6 +133,7 @@ TYPED_TEST(GyroSlewLimits, GivenDifferentPitchAndYawLimitsWhenCommandedThenStead
 // Uncaged at the limited command, the gyro has nothing to nutate about: it turns about the
 // fixed axis (0, w1, w2) of its own frame at |w|, and the spin axis follows Rodrigues' cone.
 TYPED_TEST(GyroSlewLimits, GivenGyroUncagedAtLimitedCommandWhenSlewedThenRatesStayAndSpinAxisTurnsAboutFixedAxis) {
+  GYRO_VERIFIES("MODEL-3");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.max_pitch_rate_rad_s = T(0.1);
@@ -155,6 +160,7 @@ TYPED_TEST(GyroSlewLimits, GivenGyroUncagedAtLimitedCommandWhenSlewedThenRatesSt
 // to the right for a positive torque (dH/dt = T with H along +x), at T1/H; a torque about
 // the yaw axis precesses it in pitch at -T2/H.
 TYPED_TEST(GyroSlewLimits, GivenTorqueAboutOneAxisThenSpinAxisPrecessesAboutTheOtherAtTorqueOverH) {
+  GYRO_VERIFIES("PORT-3", "EXACT-3");
   using T = TypeParam;
   const GyroModelConfig<T> c = test_config<T>();
   const double h = D(momentum(c, kSpinHz<T>));
@@ -184,6 +190,7 @@ class GyroUncage : public ::testing::Test {};
 TYPED_TEST_SUITE(GyroUncage, Scalars);
 
 TYPED_TEST(GyroUncage, GivenOffsetThenGimbalAnglesEqualItWithPositivePitchNoseUpAndPositiveYawRight) {
+  GYRO_VERIFIES("MODEL-3", "PORT-3");
   using T = TypeParam;
   const GyroModelConfig<T> c = test_config<T>();
   const Matrix3<T> body = some_body_attitude<T>();
@@ -225,6 +232,7 @@ TYPED_TEST(GyroUncage, GivenOffsetThenGimbalAnglesEqualItWithPositivePitchNoseUp
 
 // A large two-axis offset is the rotation vector (0, pitch, yaw) applied to the body's axes.
 TYPED_TEST(GyroUncage, GivenLargeTwoAxisOffsetThenSpinAxisIsTheOffsetRotationVectorApplied) {
+  GYRO_VERIFIES("MODEL-3");
   using T = TypeParam;
   const double p = 0.2, y = 0.3, n = std::hypot(p, y);
   GyroModel<T> g = uncaged_model<T>(test_config<T>(), Vector2<T>::Zero(), Vector2<T>(T(p), T(y)),
@@ -236,6 +244,7 @@ TYPED_TEST(GyroUncage, GivenLargeTwoAxisOffsetThenSpinAxisIsTheOffsetRotationVec
 }
 
 TYPED_TEST(GyroUncage, GivenNoTorqueNoFrictionAndBodyAtRestThenGyroKeepsItsAttitude) {
+  GYRO_VERIFIES("MODEL-3");
   using T = TypeParam;
   const Matrix3<T> body = some_body_attitude<T>();
   GyroModel<T> g = uncaged_model<T>(test_config<T>(), Vector2<T>::Zero(), Vector2<T>(T(0.05), T(-0.03)), body);
@@ -253,6 +262,7 @@ TYPED_TEST(GyroUncage, GivenNoTorqueNoFrictionAndBodyAtRestThenGyroKeepsItsAttit
 
 // The same gyro under a body that turns: it stays put in inertial space.
 TYPED_TEST(GyroUncage, GivenNoTorqueNoFrictionAndTurningBodyThenSpinAxisStaysFixedInEarthAxes) {
+  GYRO_VERIFIES("MODEL-3");
   using T = TypeParam;
   const Matrix3<T> body0 = some_body_attitude<T>();
   GyroModel<T> g = uncaged_model<T>(test_config<T>(), Vector2<T>::Zero(), Vector2<T>(T(0.05), T(-0.03)), body0);
@@ -284,6 +294,7 @@ TYPED_TEST_SUITE(GyroSpinDown, Scalars);
 // and turns with phase Phi(t) = (2 pi J0/J) * integral of spin_hz. Spin from 100 Hz down to
 // 20 Hz linearly over 2 s; the zero crossings of w1 in each window follow Phi.
 TYPED_TEST(GyroSpinDown, GivenSpinVaryingEveryStepThenNutationFrequencyFollowsH) {
+  GYRO_VERIFIES("EXACT-3");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.pitch_inertia = T(2);
@@ -331,6 +342,7 @@ TYPED_TEST(GyroSpinDown, GivenSpinVaryingEveryStepThenNutationFrequencyFollowsH)
 
 // No spin: the axes decouple, J_i w_i' = -f w_i + T_i, pure exponentials toward T_i/f.
 TYPED_TEST(GyroSpinDown, GivenZeroSpinWithFrictionThenEachAxisJustDamps) {
+  GYRO_VERIFIES("EXACT-1");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.friction = T(5);
@@ -365,6 +377,7 @@ TYPED_TEST(GyroSpinDown, GivenZeroSpinWithFrictionThenEachAxisJustDamps) {
 
 // No spin and no friction: free gimbals, w' = T/J.
 TYPED_TEST(GyroSpinDown, GivenZeroSpinWithoutFrictionThenTorqueAcceleratesTheGimbalsFreely) {
+  GYRO_VERIFIES("EXACT-1");
   using T = TypeParam;
   GyroModel<T> g = uncaged_model<T>(test_config<T>(), Vector2<T>(T(0.01), T(0)));
   const GyroStepInput<T> in = step_input<T>(T(1e-2), T(0));
@@ -379,6 +392,7 @@ TYPED_TEST(GyroSpinDown, GivenZeroSpinWithoutFrictionThenTorqueAcceleratesTheGim
 // is finite and, with no torque, the gimbal energy J1 w1^2 + J2 w2^2 never grows
 // (its derivative is -2 f |w|^2 whatever H does).
 TYPED_TEST(GyroSpinDown, GivenSpinDownToZeroThroughCriticalDampingThenRatesStayFiniteAndEnergyDecays) {
+  GYRO_VERIFIES("EXACT-1", "EXACT-4");
   using T = TypeParam;
   GyroModelConfig<T> c = test_config<T>();
   c.friction = T(50);
@@ -413,6 +427,7 @@ TYPED_TEST(GyroSpinDown, GivenSpinDownToZeroThroughCriticalDampingThenRatesStayF
 // A step of a new dt with the spin unchanged is the step of that dt, bit for bit what a model
 // uncaged at the same rates does in one step.
 TEST(GyroModelCache, ANewStepUsesItsOwnTransition) {
+  GYRO_VERIFIES("MODEL-6");
   const GyroModelConfig<double> c = ReportSample<double>::config();
   const Vector2<double> torque(0.3, -0.2);
   GyroStepInput<double> in;

@@ -13,6 +13,7 @@
 #include "gyro/link/frame_decoder.hpp"
 #include "gyro/link/gyro_link_messages.hpp"
 #include "gyro/link/wire.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro::link {
 namespace {
@@ -50,6 +51,7 @@ std::vector<GyroLinkFrame<T>> feed(Decoder<T>& d, const std::vector<std::uint8_t
 }
 
 TEST(LinkCrc, GivenTheCatalogueCheckStringThenItsCheckValue) {
+  GYRO_VERIFIES("LINK-1");
   const char* text = "123456789";
   std::array<std::uint8_t, 9> bytes{};
   std::memcpy(bytes.data(), text, 9);
@@ -58,6 +60,7 @@ TEST(LinkCrc, GivenTheCatalogueCheckStringThenItsCheckValue) {
 }
 
 TEST(LinkWire, GivenKnownValuesThenLittleEndianIeeeBytes) {
+  GYRO_VERIFIES("LINK-2");
   std::array<std::uint8_t, 19> buf{};
   WireWriter w(buf, 0);
   w.u16(0x1234u);
@@ -84,6 +87,7 @@ TEST(LinkWire, GivenKnownValuesThenLittleEndianIeeeBytes) {
 }
 
 TEST(LinkFrame, GivenAPickoffFrameThenTheDocumentedLayout) {
+  GYRO_VERIFIES("LINK-1", "LINK-5");
   const std::vector<std::uint8_t> f = bytes_of<float>(encode_pickoff(sample_reading<float>(), 7));
   ASSERT_EQ(f.size(), 7u + 17u);
   EXPECT_EQ(f[0], 0xA5u);
@@ -120,11 +124,13 @@ void round_trip() {
 }
 
 TEST(LinkDecoder, GivenAFrameThenDecodedBitForBitInFloatAndDouble) {
+  GYRO_VERIFIES("LINK-2", "LINK-3", "RULE-8");
   round_trip<float>();
   round_trip<double>();
 }
 
 TEST(LinkDecoder, GivenNoiseBeforeAndBetweenFramesThenEveryFrameFoundAndTheNoiseCounted) {
+  GYRO_VERIFIES("LINK-3", "LINK-4");
   Decoder<float> dec;
   std::vector<std::uint8_t> stream = {0x00, 0xA5, 0x13, 0x5A, 0xFF, 0xA5};  // incl. lone sync bytes
   const std::vector<std::uint8_t> a = bytes_of<float>(encode_pickoff(sample_reading<float>(), 1));
@@ -141,6 +147,7 @@ TEST(LinkDecoder, GivenNoiseBeforeAndBetweenFramesThenEveryFrameFoundAndTheNoise
 }
 
 TEST(LinkDecoder, GivenATruncatedFrameThenTheFrameAfterItIsStillFound) {
+  GYRO_VERIFIES("LINK-3");
   // The stub of a frame claims a length that swallows the next frame's first bytes: its CRC
   // fails, and the decoder finds the good frame inside the bytes it already holds.
   Decoder<float> dec;
@@ -154,6 +161,7 @@ TEST(LinkDecoder, GivenATruncatedFrameThenTheFrameAfterItIsStillFound) {
 }
 
 TEST(LinkDecoder, GivenEverySingleBitErrorOfAFrameThenNoFrameIsDelivered) {
+  GYRO_VERIFIES("LINK-3");
   const std::vector<std::uint8_t> good = bytes_of<double>(encode_pickoff(sample_reading<double>(), 3));
   for (std::size_t byte = 0; byte < good.size(); ++byte) {
     for (int bit = 0; bit < 8; ++bit) {
@@ -169,6 +177,7 @@ TEST(LinkDecoder, GivenEverySingleBitErrorOfAFrameThenNoFrameIsDelivered) {
 }
 
 TEST(LinkDecoder, GivenTheOtherRealFormatOrAnUnknownTypeOrWrongLengthThenRefusedAsHeaderErrors) {
+  GYRO_VERIFIES("LINK-3", "LINK-4");
   const std::vector<std::uint8_t> as_double = bytes_of<double>(encode_pickoff(sample_reading<double>(), 1));
   Decoder<float> dec;
   EXPECT_TRUE(feed(dec, as_double).empty());  // a float receiver never takes binary64 reals
@@ -188,6 +197,7 @@ TEST(LinkDecoder, GivenTheOtherRealFormatOrAnUnknownTypeOrWrongLengthThenRefused
 }
 
 TEST(LinkDecoder, GivenBytesPushedWithoutDrainingThenTheWindowRefusesAndCountsTheOverflow) {
+  GYRO_VERIFIES("LINK-4");
   Decoder<float> dec;
   std::size_t accepted = 0;
   // A sync pair and a header announcing a full frame: the decoder must hold them.
@@ -200,6 +210,7 @@ TEST(LinkDecoder, GivenBytesPushedWithoutDrainingThenTheWindowRefusesAndCountsTh
 }
 
 TEST(LinkMessages, GivenReservedStatusBitsOrANonFiniteTorqueThenDecodingRefusesAndLeavesTheOutput) {
+  GYRO_VERIFIES("LINK-5");
   GyroLinkFrame<float> f = encode_pickoff(sample_reading<float>(), 1);
   f.payload[4] = 0x07;  // bit 2 is reserved
   PickoffReading<float> out;

@@ -18,6 +18,7 @@
 #include "gyro/seeker_example.hpp"
 #include "gyro/sil_loop.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -47,6 +48,7 @@ void arrive(Wire& wire, const std::vector<std::uint8_t>& bytes) {
 }
 
 TEST(LinkPort, GivenAFrameThenOkWithItsReadingAndGivenSilenceThenTimeout) {
+  GYRO_VERIFIES("LINK-6");
   Wire wire;
   LinkGyroPort<float> port(wire);
   PickoffReading<float> out;
@@ -63,6 +65,7 @@ TEST(LinkPort, GivenAFrameThenOkWithItsReadingAndGivenSilenceThenTimeout) {
 }
 
 TEST(LinkPort, GivenOnlyBadBytesThenBusErrorAndGivenAPartialFrameThenTimeoutUntilItCompletes) {
+  GYRO_VERIFIES("LINK-6");
   Wire wire;
   LinkGyroPort<double> port(wire);
   PickoffReading<double> out;
@@ -83,6 +86,7 @@ TEST(LinkPort, GivenOnlyBadBytesThenBusErrorAndGivenAPartialFrameThenTimeoutUnti
 }
 
 TEST(LinkPort, GivenDuplicatesGapsAndABacklogThenSequenceNumbersJudgeThem) {
+  GYRO_VERIFIES("LINK-6");
   Wire wire;
   LinkGyroPort<float> port(wire);
   PickoffReading<float> out;
@@ -109,6 +113,7 @@ TEST(LinkPort, GivenDuplicatesGapsAndABacklogThenSequenceNumbersJudgeThem) {
 }
 
 TEST(LinkPort, GivenReservedBitsOrATorqueFrameThenNotAReading) {
+  GYRO_VERIFIES("LINK-6", "LINK-5");
   Wire wire;
   LinkGyroPort<float> port(wire);
   PickoffReading<float> out;
@@ -126,6 +131,7 @@ TEST(LinkPort, GivenReservedBitsOrATorqueFrameThenNotAReading) {
 }
 
 TEST(LinkPort, GivenMoreBytesThanOneReadTakesThenTheRestWaitsForTheNextRead) {
+  GYRO_VERIFIES("LINK-6");
   Wire wire;
   LinkGyroPort<float, 30> port(wire);  // a read takes at most 30 bytes: one frame and a bit
   PickoffReading<float> out;
@@ -139,6 +145,7 @@ TEST(LinkPort, GivenMoreBytesThanOneReadTakesThenTheRestWaitsForTheNextRead) {
 }
 
 TEST(LinkPort, GivenATorqueThenOneWholeFrameAndGivenNoRoomOrNonFiniteThenNothingAndBusError) {
+  GYRO_VERIFIES("LINK-7");
   link::FifoLink<16, 16> small;  // room for less than a double torque frame (23 bytes)
   LinkGyroPort<double> tight(small);
   EXPECT_EQ(tight.write_torquer(Vector2<double>(0.01, -0.02)), PortStatus::kBusError);
@@ -147,6 +154,7 @@ TEST(LinkPort, GivenATorqueThenOneWholeFrameAndGivenNoRoomOrNonFiniteThenNothing
   Wire wire;
   LinkGyroPort<double> port(wire);
   EXPECT_EQ(port.write_torquer(Vector2<double>(std::nan(""), 0.0)), PortStatus::kBusError);
+  EXPECT_EQ(port.write_torquer(Vector2<double>(0.0, std::nan(""))), PortStatus::kBusError);
   EXPECT_EQ(wire.tx().size(), 0u);
   ASSERT_EQ(port.write_torquer(Vector2<double>(0.01, -0.02)), PortStatus::kOk);
   ASSERT_EQ(port.write_torquer(Vector2<double>(0.03, -0.04)), PortStatus::kOk);
@@ -167,11 +175,12 @@ TEST(LinkPort, GivenATorqueThenOneWholeFrameAndGivenNoRoomOrNonFiniteThenNothing
   EXPECT_EQ(got[1], Vector2<double>(0.03, -0.04));
   EXPECT_EQ(seqs[1], static_cast<std::uint8_t>(seqs[0] + 1u));
   EXPECT_EQ(port.counters().torque_frames, 2u);
-  EXPECT_EQ(port.counters().torque_refused, 1u);
+  EXPECT_EQ(port.counters().torque_refused, 2u);
 }
 
 // The register block of a CMSDK APB UART, in RAM: the test plays the hardware.
 TEST(CmsdkUart, GivenRegisterStatesThenTheDriverReadsWritesAndCountsOverrunsAsTheHardwareDefines) {
+  GYRO_VERIFIES("LINK-9");
   link::CmsdkApbUartRegisters regs{};
   link::CmsdkApbUart uart(regs);
   EXPECT_FALSE(uart.enable(25000000u, 2000000u));  // divider 12.5 < 16
@@ -281,6 +290,7 @@ void transparent_wire() {
 // In float, the Cortex-M4F's case (the double one runs end to end on the Cortex-M7 in
 // scripts/pil.sh; a second instantiation of the component doubles this file's build time).
 TEST(LinkPort, GivenACleanLinkThenTheComponentFliesBitForBitAsWithTheStubAsItsPort) {
+  GYRO_VERIFIES("LINK-8");
   transparent_wire<float>();
 }
 

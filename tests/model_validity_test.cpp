@@ -7,6 +7,7 @@
 #include <ostream>
 #include <string>
 
+#include "support/requirements.hpp"
 #include "validity_envelope.hpp"
 
 namespace gyro::validity {
@@ -27,6 +28,7 @@ void PrintTo(const Corner& c, std::ostream* os) {
 class EnvelopeCorner : public ::testing::TestWithParam<Corner> {};
 
 TEST_P(EnvelopeCorner, GIVEN_the_gimbal_plant_WHEN_slewing_along_the_cone_THEN_no_fault_and_residual_and_slew_within_goal) {
+  GYRO_VERIFIES("EST-6");
   const Corner c = GetParam();
   const Case k{c.cone_deg * kDeg, c.turn_rad_s, c.roll_rad_s, c.cone_deg > 0 ? 0.3 : 0.0};
   const ClosedLoopResult r = run_closed_loop(k, kWindow);
@@ -67,6 +69,7 @@ INSTANTIATE_TEST_SUITE_P(DoneWhenCorners, EnvelopeCorner,
                          corner_name);
 
 TEST(EnvelopeBeyond, GIVEN_a_body_turning_faster_than_the_torquer_follows_WHEN_free_THEN_the_gimbal_limit_is_flagged_before_the_stop) {
+  GYRO_VERIFIES("EST-5");
   // 2 rad/s across body x (1.41 rad/s on pitch and on yaw) against 1 rad/s per axis of slew
   // limit and 1.33 rad/s of torquer authority: the body drives the gimbal onto its stop.
   const ClosedLoopResult r = run_closed_loop(Case{0.0, 2.0, 0.0, 0.0}, kWindow);
@@ -83,6 +86,7 @@ TEST(EnvelopeBeyond, GIVEN_a_body_turning_faster_than_the_torquer_follows_WHEN_f
 }
 
 TEST(EnvelopeOpenLoop, GIVEN_the_same_torques_WHEN_the_body_turns_and_rolls_THEN_the_corrected_model_follows_the_gimbal_and_the_report_s_does_not) {
+  GYRO_VERIFIES("STUB-1", "MODEL-5");
   const OpenLoopResult r = run_open_loop(Case{20 * kDeg, 1.0, 10.0, 0.3});
   ASSERT_TRUE(r.ok);
   EXPECT_FALSE(r.plant_contact);

@@ -27,6 +27,7 @@
 #include "gyro/seeker_example.hpp"
 #include "gyro/seeker_gimbal.hpp"
 #include "gyro/sil_loop.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -52,6 +53,7 @@ void expect_no_heap(const HeapUse& use, const char* what) {
 // Canaries: each check catches what it is meant to.
 
 TEST(HeapGuardCanary, GivenOperatorNewAndAVectorWhenCountedThenBothSeen) {
+  GYRO_VERIFIES("RULE-1");
   const HeapCounter counter;
   {
     std::unique_ptr<int> p = std::make_unique<int>(3);
@@ -65,6 +67,7 @@ TEST(HeapGuardCanary, GivenOperatorNewAndAVectorWhenCountedThenBothSeen) {
 }
 
 TEST(HeapGuardCanary, GivenADynamicEigenMatrixWhenCountedThenItsMallocSeen) {
+  GYRO_VERIFIES("RULE-1");
   // Eigen allocates with std::malloc, which the counter sees through the linker's --wrap.
   const HeapCounter counter;
   {
@@ -77,6 +80,7 @@ TEST(HeapGuardCanary, GivenADynamicEigenMatrixWhenCountedThenItsMallocSeen) {
 }
 
 TEST(HeapGuardCanary, GivenFixedSizeEigenWhenCountedThenNothingSeen) {
+  GYRO_VERIFIES("RULE-1");
   // The counter does not see the test framework or anything else outside the region.
   Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
   const HeapUse use = measure_heap([&] {
@@ -89,6 +93,7 @@ TEST(HeapGuardCanary, GivenFixedSizeEigenWhenCountedThenNothingSeen) {
 }
 
 TEST(HeapGuardCanaryDeathTest, GivenEigenMallocBannedWhenDynamicMatrixThenEigenAborts) {
+  GYRO_VERIFIES("RULE-1");
   EXPECT_DEATH(
       {
         Eigen::internal::set_is_malloc_allowed(false);
@@ -132,6 +137,7 @@ std::vector<RotorParameters<T>> rotors_in_every_regime() {
 }
 
 TYPED_TEST(NoHeap, GivenEveryRegimeAndStepWhenTransitionAdvanceAndPropagateThenNoHeap) {
+  GYRO_VERIFIES("RULE-1");
   using T = TypeParam;
   const Vector2<T> torque(T(0.7), T(-1.3));
   for (const RotorParameters<T>& p : rotors_in_every_regime<T>()) {
@@ -156,6 +162,7 @@ TYPED_TEST(NoHeap, GivenEveryRegimeAndStepWhenTransitionAdvanceAndPropagateThenN
 }
 
 TYPED_TEST(NoHeap, GivenEveryRegimeWhenModesAmplitudeAndPrecessionThenNoHeap) {
+  GYRO_VERIFIES("RULE-1");
   using T = TypeParam;
   const Vector2<T> torque(T(0.7), T(-1.3));
   for (const RotorParameters<T>& p : rotors_in_every_regime<T>()) {
@@ -177,6 +184,7 @@ TYPED_TEST(NoHeap, GivenEveryRegimeWhenModesAmplitudeAndPrecessionThenNoHeap) {
 }
 
 TYPED_TEST(NoHeap, GivenBadInputWhenRejectedThenNoHeap) {
+  GYRO_VERIFIES("RULE-1");
   using T = TypeParam;
   const RotorParameters<T> bad{T(-1), T(2), T(5), T(10)};
   const RotorParameters<T> good{T(2.25), T(2), T(5), T(1884)};
@@ -208,6 +216,7 @@ TYPED_TEST(NoHeap, GivenBadInputWhenRejectedThenNoHeap) {
 // its limit, Coulomb friction, unbalance, gyro axes), refusals.
 
 TYPED_TEST(NoHeap, GivenTheGimbalPlantWithEverythingOnWhenConfiguredStartedAndSteppedThenNoHeap) {
+  GYRO_VERIFIES("RULE-1");
   using T = TypeParam;
   for (const TorquerAxes axes : {TorquerAxes::kGimbal, TorquerAxes::kGyro}) {
     GimbalPlantConfig<T> c = seeker_gimbal_config<T>();
@@ -258,6 +267,7 @@ TYPED_TEST(NoHeap, GivenTheGimbalPlantWithEverythingOnWhenConfiguredStartedAndSt
 // configure, power-up, caging, uncaging, slewing, a scheduled torquer fault, a refused tick.
 
 TYPED_TEST(NoHeap, GivenTheSilLoopWithBothPlantsWhenStartedAndTickedThroughEveryModeThenNoHeap) {
+  GYRO_VERIFIES("RULE-1");
   using T = TypeParam;
   for (const PlantKind plant : {PlantKind::kGimbal, PlantKind::kReport}) {
     for (const StubBodyFeed feed : {StubBodyFeed::kFull, StubBodyFeed::kAttitude}) {

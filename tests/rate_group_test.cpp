@@ -5,11 +5,13 @@
 #include <cstdint>
 
 #include "gyro/rate_group.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
 
 TEST(RateGroup, GivenNoReleaseThenNoCycleAndGivenOneThenTickZeroRunsOnce) {
+  GYRO_VERIFIES("RG-1");
   RateGroup g;
   std::uint64_t tick = 99;
   EXPECT_FALSE(g.pending());
@@ -30,7 +32,23 @@ TEST(RateGroup, GivenNoReleaseThenNoCycleAndGivenOneThenTickZeroRunsOnce) {
   EXPECT_EQ(g.telemetry().skipped, 0u);
 }
 
+TEST(RateGroup, GivenAnOpenCycleThenBeginIsRefusedUntilItEnds) {
+  GYRO_VERIFIES("RG-1");
+  RateGroup g;
+  std::uint64_t tick = 99;
+  g.release();
+  ASSERT_TRUE(g.begin(tick));
+  g.release();  // tick 1, released while tick 0 runs
+  EXPECT_FALSE(g.begin(tick)) << "a cycle is open";
+  EXPECT_EQ(tick, 0u);
+  EXPECT_EQ(g.telemetry().released, 1u) << "nothing changed";
+  EXPECT_TRUE(g.end());
+  ASSERT_TRUE(g.begin(tick));
+  EXPECT_EQ(tick, 1u);
+}
+
 TEST(RateGroup, GivenATickReleasedDuringTheCycleThenAnOverrunAndTheNextCycleRunsIt) {
+  GYRO_VERIFIES("RG-1", "RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   g.release();
@@ -48,6 +66,7 @@ TEST(RateGroup, GivenATickReleasedDuringTheCycleThenAnOverrunAndTheNextCycleRuns
 }
 
 TEST(RateGroup, GivenSeveralTicksReleasedDuringACycleThenTheLatestRunsAndTheOthersAreSkipped) {
+  GYRO_VERIFIES("RG-1", "RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   g.release();
@@ -66,6 +85,7 @@ TEST(RateGroup, GivenSeveralTicksReleasedDuringACycleThenTheLatestRunsAndTheOthe
 }
 
 TEST(RateGroup, GivenTicksReleasedBeforeTheFirstCycleThenTheyAreSkipped) {
+  GYRO_VERIFIES("RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   g.release();
@@ -76,6 +96,7 @@ TEST(RateGroup, GivenTicksReleasedBeforeTheFirstCycleThenTheyAreSkipped) {
 }
 
 TEST(RateGroup, GivenASteadyScheduleThenEveryTickRunsWithoutOverrun) {
+  GYRO_VERIFIES("RG-2");
   RateGroup g;
   std::uint64_t tick = 0;
   for (std::uint64_t k = 0; k < 10000; ++k) {

@@ -6,6 +6,7 @@
 
 #include "gyro/report_sample.hpp"
 #include "support/report_listing.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -37,6 +38,7 @@ Vector2<double> theory_precession() {
 }
 
 TEST(ReportListing, GivenListingAsPrintedThenItStopsOnSmallAngleFlagNearStep150) {
+  GYRO_VERIFIES("MODEL-1");
   report::Listing listing;
   const int steps = report::run_gymain(listing, [](int, double) {});
   EXPECT_EQ(listing.isae, 1);
@@ -48,12 +50,14 @@ TEST(ReportListing, GivenListingAsPrintedThenItStopsOnSmallAngleFlagNearStep150)
 }
 
 TEST(ReportListing, GivenOnlyTheIsafResetThenAll801StepsRun) {
+  GYRO_VERIFIES("MODEL-1");
   report::Listing listing;
   listing.fix.reset_isaf_angles = true;
   EXPECT_EQ(report::run_gymain(listing, [](int, double) {}), 801);
 }
 
 TEST(ReportListing, GivenListingAsPrintedThenGimbalAnglesAreZeroedOnTheNormalPath) {
+  GYRO_VERIFIES("MODEL-1");
   report::Listing listing;
   listing.fix.reset_isaf_angles = true;
   double largest = 0;
@@ -64,6 +68,7 @@ TEST(ReportListing, GivenListingAsPrintedThenGimbalAnglesAreZeroedOnTheNormalPat
 }
 
 TEST(ReportListing, GivenListingAsPrintedThenRenormalisationScalesTheMatrixBySqrt3) {
+  GYRO_VERIFIES("MODEL-1");
   report::Listing listing;
   listing.fix.reset_isaf_angles = true;
   report::run_gymain(listing, [](int, double) {});
@@ -75,6 +80,7 @@ TEST(ReportListing, GivenListingAsPrintedThenRenormalisationScalesTheMatrixBySqr
 }
 
 TEST(ReportListing, GivenAllFixesThenListingAgreesWithGyroModelOverTheWholeRun) {
+  GYRO_VERIFIES("MODEL-1");
   report::Listing listing;
   listing.fix = report::ListingFixes::all();
   listing.pi = kPi<double>;  // the listing's 3.1415927 would shift H by 1.5e-8
@@ -101,6 +107,7 @@ TEST(ReportListing, GivenAllFixesThenListingAgreesWithGyroModelOverTheWholeRun) 
 }
 
 TEST(ReportSample, GivenReportParametersThenInitgFiguresMatch) {
+  GYRO_VERIFIES("EXACT-3");
   RotorModes<double> m;
   ASSERT_EQ(compute_modes(S::rotor(), m), Status::kOk);
   report::Listing listing;
@@ -111,6 +118,7 @@ TEST(ReportSample, GivenReportParametersThenInitgFiguresMatch) {
 }
 
 TEST(ReportSample, GivenFixedModelThenAll801StepsRunWithoutFlags) {
+  GYRO_VERIFIES("MODEL-1");
   SampleRunSummary sum;
   const std::vector<Sample> run = run_model(S::initg_step(), S::kSteps, &sum);
   EXPECT_EQ(sum.status, Status::kOk);
@@ -124,6 +132,7 @@ TEST(ReportSample, GivenFixedModelThenAll801StepsRunWithoutFlags) {
 // theory's alpha and beta: c is the steady precession, and a near-zero residual shows the
 // nutation has the theory's frequency and decay.
 TEST(ReportSample, GivenRunThenRatesArePrecessionPlusNutationOfTheTheory) {
+  GYRO_VERIFIES("EXACT-3");
   RotorModes<double> m;
   ASSERT_EQ(compute_modes(S::rotor(), m), Status::kOk);
   const std::vector<Sample> run = run_model(S::initg_step(), S::kSteps);
@@ -151,6 +160,7 @@ TEST(ReportSample, GivenRunThenRatesArePrecessionPlusNutationOfTheTheory) {
 }
 
 TEST(ReportSample, GivenGimbalAnglesThenNutationRidesOnTheDriftAtTheoryFrequency) {
+  GYRO_VERIFIES("EXACT-3");
   const std::vector<Sample> run = run_model(S::initg_step(), S::kSteps);
   // Remove the slow drift with a quadratic fit, then count zero crossings of what is left.
   for (int axis = 0; axis < 2; ++axis) {
@@ -180,6 +190,7 @@ TEST(ReportSample, GivenGimbalAnglesThenNutationRidesOnTheDriftAtTheoryFrequency
 }
 
 TEST(ReportSample, GivenStep100TimesLongerThenPrecessionIsUnchanged) {
+  GYRO_VERIFIES("MODEL-2");
   const double dt = S::initg_step();
   const std::vector<Sample> fine = run_model(dt, 800);
   SampleRunSummary sum;

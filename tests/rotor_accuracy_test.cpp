@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "gyro/rotor_transition.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -549,17 +550,22 @@ void run_accuracy() {
 bool no_reference_wider_than_double() { return kQuadMantissaBits <= std::numeric_limits<double>::digits; }
 
 TEST(RotorAccuracy, GivenCasesInEveryRegimeThenDoubleWithin1e12OfQuadReference) {
+  GYRO_VERIFIES("EXACT-1");
   if (no_reference_wider_than_double()) GTEST_SKIP() << "no floating type wider than double on this target";
   ASSERT_GE(all_cases().size(), 300U);
   run_accuracy<double>();
 }
 
-TEST(RotorAccuracy, GivenCasesInEveryRegimeThenFloatWithin1e5OfQuadReference) { run_accuracy<float>(); }
+TEST(RotorAccuracy, GivenCasesInEveryRegimeThenFloatWithin1e5OfQuadReference) {
+  GYRO_VERIFIES("EXACT-1", "RULE-8");
+  run_accuracy<float>();
+}
 
 // ----------------------------------------------------------------------------------------------
 // The reference itself, against answers known without it.
 
 TEST(RotorAccuracyReference, GivenNoSpinNoFrictionThenReferenceIsThePolynomial) {
+  GYRO_VERIFIES("EXACT-1");
   const QuadParams q{Quad(0.75), Quad(3.5), 0, 0, Quad(12.5)};
   const Reference r = reference(q);
   // theta = theta0 + w0 dt + T/J dt^2/2, w = w0 + T/J dt
@@ -573,6 +579,7 @@ TEST(RotorAccuracyReference, GivenNoSpinNoFrictionThenReferenceIsThePolynomial) 
 }
 
 TEST(RotorAccuracyReference, GivenEqualInertiasNoFrictionThenReferenceRotatesTheRates) {
+  GYRO_VERIFIES("EXACT-1");
   if (no_reference_wider_than_double()) GTEST_SKIP() << "no floating type wider than double on this target";
   // J1 = J2 = J, f = 0: w(t) = R(H t / J) w0. beta*dt = 1e5 rad, long double sin/cos (x86:
   // 64-bit mantissa) of an exactly representable argument.
@@ -590,6 +597,7 @@ TEST(RotorAccuracyReference, GivenEqualInertiasNoFrictionThenReferenceRotatesThe
 }
 
 TEST(RotorAccuracyReference, GivenStiffAndOscillatoryCasesThenReferenceIsASemigroup) {
+  GYRO_VERIFIES("EXACT-1");
   for (const QuadParams& q : {QuadParams{Quad(0.01), Quad(1), Quad(300), Quad(0.5), Quad(7)},
                               QuadParams{Quad(2.25), Quad(2), Quad(5), Quad(1884.9555921538758), Quad(50)}}) {
     const Reference half = reference(q);
@@ -605,7 +613,7 @@ TEST(RotorAccuracyReference, GivenStiffAndOscillatoryCasesThenReferenceIsASemigr
         worst = std::max(worst, to_double(qabs(sq - full.phi[i][j]) / std::max(Quad(1), qabs(full.phi[i][j]))));
       }
     }
-    EXPECT_LE(worst, to_double(1e6 * quad_epsilon()));
+    EXPECT_LE(worst, to_double(Quad(1e6) * quad_epsilon()));
   }
 }
 
@@ -630,6 +638,7 @@ void expect_paths_agree_bit_for_bit() {
 }
 
 TEST(RotorAccuracy, GivenAnyCaseWhenPrecomputedOrOneCallThenResultsAgreeBitForBit) {
+  GYRO_VERIFIES("EXACT-2");
   expect_paths_agree_bit_for_bit<double>();
   expect_paths_agree_bit_for_bit<float>();
 }
@@ -642,6 +651,7 @@ struct SemigroupCase {
 };
 
 TEST(RotorAccuracy, GivenNStepsOfDtThenEqualsOneStepOfNDt) {
+  GYRO_VERIFIES("EXACT-2");
   const double h_report = 2.0 * 3.14159265358979323846 * 100.0 * 3.0;
   RotorParameters<double> near_critical{1.0, 4.0, 0.0, 2.0};
   near_critical.friction = tuned_friction(near_critical, 0.0);
@@ -698,6 +708,7 @@ void expect_steady_state(const RotorParameters<T>& prm, T tolerance) {
 }
 
 TEST(RotorAccuracy, GivenALongStepThenRatesEqualSteadyPrecession) {
+  GYRO_VERIFIES("EXACT-3");
   const double h_report = 2.0 * 3.14159265358979323846 * 100.0 * 3.0;
   const RotorParameters<double> rotors[] = {
       {2.25, 2.0, 5.0, h_report},  // underdamped (the report's gyro)
@@ -743,6 +754,7 @@ double measured_nutation_period(const RotorParameters<double>& prm, double sampl
 }
 
 TEST(RotorAccuracy, GivenLightDampingThenRatesOscillateWithPeriodTwoPiOverBeta) {
+  GYRO_VERIFIES("EXACT-3");
   const double pi = 3.14159265358979323846;
   const RotorParameters<double> rotors[] = {
       {2.25, 2.0, 5.0, 2.0 * pi * 100.0 * 3.0},  // the report's gyro, 141 Hz

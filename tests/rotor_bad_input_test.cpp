@@ -19,6 +19,7 @@
 
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -148,6 +149,7 @@ RotorParameters<T> with_field(int i, T value) {
 constexpr const char* kFieldNames[] = {"J1", "J2", "f", "H"};
 
 TYPED_TEST(BadInput, GivenNaNOrInfinityInAnyParameterWhenAnyCallThenNonFiniteInputAndOutputUntouched) {
+  GYRO_VERIFIES("EXACT-5", "RULE-9");
   using T = TypeParam;
   for (int i = 0; i < 4; ++i) {
     for (const T v : {kNaN<T>, -kNaN<T>, kInf<T>, -kInf<T>}) {
@@ -158,6 +160,7 @@ TYPED_TEST(BadInput, GivenNaNOrInfinityInAnyParameterWhenAnyCallThenNonFiniteInp
 }
 
 TYPED_TEST(BadInput, GivenZeroOrNegativeInertiaWhenAnyCallThenNonPositiveInertia) {
+  GYRO_VERIFIES("EXACT-5");
   using T = TypeParam;
   for (int i = 0; i < 2; ++i) {
     for (const T v : {T(0), -T(0), -std::numeric_limits<T>::denorm_min(), T(-1), std::numeric_limits<T>::lowest()}) {
@@ -168,6 +171,7 @@ TYPED_TEST(BadInput, GivenZeroOrNegativeInertiaWhenAnyCallThenNonPositiveInertia
 }
 
 TYPED_TEST(BadInput, GivenNegativeFrictionWhenAnyCallThenNegativeFriction) {
+  GYRO_VERIFIES("EXACT-5");
   using T = TypeParam;
   for (const T v : {-std::numeric_limits<T>::denorm_min(), T(-5), std::numeric_limits<T>::lowest()}) {
     expect_every_call_rejects(with_field(2, v), Status::kNegativeFriction, "f < 0");
@@ -175,6 +179,7 @@ TYPED_TEST(BadInput, GivenNegativeFrictionWhenAnyCallThenNegativeFriction) {
 }
 
 TYPED_TEST(BadInput, GivenNegativeAngularMomentumWhenAnyCallThenNegativeAngularMomentum) {
+  GYRO_VERIFIES("EXACT-5");
   using T = TypeParam;
   for (const T v : {-std::numeric_limits<T>::denorm_min(), T(-1884.9), std::numeric_limits<T>::lowest()}) {
     expect_every_call_rejects(with_field(3, v), Status::kNegativeAngularMomentum, "H < 0");
@@ -182,6 +187,7 @@ TYPED_TEST(BadInput, GivenNegativeAngularMomentumWhenAnyCallThenNegativeAngularM
 }
 
 TYPED_TEST(BadInput, GivenNegativeZeroFrictionAndSpinWhenAnyCallThenAcceptedAsZero) {
+  GYRO_VERIFIES("EXACT-5");
   using T = TypeParam;
   // -0.0 is not < 0: the free rotor (f = H = 0) it describes is valid for the transition.
   const RotorParameters<T> p{T(1), T(2), -T(0), -T(0)};
@@ -193,6 +199,7 @@ TYPED_TEST(BadInput, GivenNegativeZeroFrictionAndSpinWhenAnyCallThenAcceptedAsZe
 }
 
 TYPED_TEST(BadInput, GivenZeroNegativeOrNonFiniteStepWhenMakeTransitionOrPropagateThenRejectedAndUntouched) {
+  GYRO_VERIFIES("EXACT-5", "RULE-9");
   using T = TypeParam;
   const RotorParameters<T> p = report_rotor<T>();
   const Vector2<T> torque(T(0.5), T(-0.25));
@@ -225,6 +232,7 @@ TYPED_TEST(BadInput, GivenZeroNegativeOrNonFiniteStepWhenMakeTransitionOrPropaga
 }
 
 TYPED_TEST(BadInput, GivenNonFiniteTorqueWhenAdvancingOrSteadyRateOrAmplitudeThenNonFiniteInputAndUntouched) {
+  GYRO_VERIFIES("EXACT-5");
   using T = TypeParam;
   const RotorParameters<T> p = report_rotor<T>();
   RotorTransition<T> tr;
@@ -256,6 +264,7 @@ TYPED_TEST(BadInput, GivenNonFiniteTorqueWhenAdvancingOrSteadyRateOrAmplitudeThe
 }
 
 TYPED_TEST(BadInput, GivenNonFiniteStateWhenAdvancingOrPropagatingThenNonFiniteInputAndStateBitIdentical) {
+  GYRO_VERIFIES("EXACT-5", "RULE-9");
   using T = TypeParam;
   const RotorParameters<T> p = report_rotor<T>();
   RotorTransition<T> tr;
@@ -276,6 +285,7 @@ TYPED_TEST(BadInput, GivenNonFiniteStateWhenAdvancingOrPropagatingThenNonFiniteI
 }
 
 TYPED_TEST(BadInput, GivenNoSpinAndNoFrictionWhenSteadyRateThenNoSteadyStateButTransitionAndAmplitudeFine) {
+  GYRO_VERIFIES("EXACT-5", "EXACT-4");
   using T = TypeParam;
   const RotorParameters<T> p{T(1), T(3), T(0), T(0)};
   Vector2<T> out = sentinel_vector<T>();
@@ -293,6 +303,7 @@ TYPED_TEST(BadInput, GivenNoSpinAndNoFrictionWhenSteadyRateThenNoSteadyStateButT
 // Huge but finite: the result does not fit the type. kNumericalOverflow, output untouched.
 
 TYPED_TEST(BadInput, GivenHugeButFiniteInputsWhenResultOverflowsThenNumericalOverflowNotNaN) {
+  GYRO_VERIFIES("EXACT-5");
   using T = TypeParam;
   const T big = std::numeric_limits<T>::max() / T(4);
   const T huge_h = std::sqrt(std::numeric_limits<T>::max()) * T(16);  // H^2 overflows
@@ -390,14 +401,15 @@ TYPED_TEST_SUITE(NutationAmplitudeOf, Scalars);
 template <typename T>
 Vector2<double> report_amplitude(const RotorParameters<T>& prm, const Vector2<T>& w, const Vector2<T>& torque) {
   using L = long double;
-  const L j1 = prm.pitch_inertia, j2 = prm.yaw_inertia, f = prm.friction, h = prm.angular_momentum;
-  const L t1 = torque(0), t2 = torque(1);
+  const L j1 = static_cast<L>(prm.pitch_inertia), j2 = static_cast<L>(prm.yaw_inertia);
+  const L f = static_cast<L>(prm.friction), h = static_cast<L>(prm.angular_momentum);
+  const L t1 = static_cast<L>(torque(0)), t2 = static_cast<L>(torque(1));
   const L k5 = (f * t1 - h * t2) / (f * f + h * h);
   const L k6 = (h * t1 + f * t2) / (f * f + h * h);
   const L alpha = f / 2 * (1 / j1 + 1 / j2);
   const L beta = std::sqrt((f * f + h * h) / (j1 * j2) - alpha * alpha);
-  const L k2 = w(0) - k5;
-  const L k4 = w(1) - k6;
+  const L k2 = static_cast<L>(w(0)) - k5;
+  const L k4 = static_cast<L>(w(1)) - k6;
   const L k1 = ((alpha * j1 - f) * k2 - h * k4) / (beta * j1);
   const L k3 = ((alpha * j1 - f) * k1 + beta * j1 * k2) / h;
   const L den = alpha * alpha + beta * beta;
@@ -406,6 +418,7 @@ Vector2<double> report_amplitude(const RotorParameters<T>& prm, const Vector2<T>
 }
 
 TYPED_TEST(NutationAmplitudeOf, GivenReportGyroWhenNutationAmplitudeThenEqualsReportEq15) {
+  GYRO_VERIFIES("EXACT-4");
   using T = TypeParam;
   const double tol = std::is_same_v<T, float> ? 1e-5 : 1e-12;
   const RotorParameters<T> p = report_rotor<T>();
@@ -425,6 +438,7 @@ TYPED_TEST(NutationAmplitudeOf, GivenReportGyroWhenNutationAmplitudeThenEqualsRe
 }
 
 TYPED_TEST(NutationAmplitudeOf, GivenFrictionThroughCriticalWhenNutationAmplitudeThenFiniteAndContinuous) {
+  GYRO_VERIFIES("EXACT-4");
   using T = TypeParam;
   // J2 = 4 J1, H = 1: critical friction f_c = 2 H sqrt(J1 J2)/|J2 - J1| = 4/3.
   const T f_c = T(4) / T(3);
@@ -488,6 +502,7 @@ Vector2<double> simulated_transient(const RotorParameters<double>& p, const Vect
 }
 
 TEST(NutationAmplitude, GivenEveryDampingRegimeWhenSimulatedFinelyThenAmplitudeBoundsTheAngleTransient) {
+  GYRO_VERIFIES("EXACT-4");
   const double pi = 3.14159265358979323846;
   struct Rotor {
     const char* name;
@@ -581,16 +596,19 @@ void expect_saturated_map(const RotorParameters<T>& prm) {
 }
 
 TEST(NutationMap, ATransientBeyondDoubleSaturates) {
+  GYRO_VERIFIES("EXACT-4", "EXACT-5");
   expect_saturated_map(RotorParameters<double>{1e-150, 1e150, 0.0, 1e-161});
 }
 
 TEST(NutationMap, ATransientBeyondFloatSaturates) {
+  GYRO_VERIFIES("EXACT-4", "EXACT-5", "RULE-8");
   expect_saturated_map(RotorParameters<float>{1e-20f, 1e20f, 0.0f, 1e-22f});
 }
 
 // Friction with no spin on gimbals so heavy that omega0^2 = f^2/(J1 J2) underflows to 0 while
 // f^2 does not: a steady precession exists (w = T/f), a transient does not (as for f = H = 0).
 TEST(NutationMap, AnUnderflowingOmega0LeavesSteadyOnly) {
+  GYRO_VERIFIES("EXACT-4");
   const RotorParameters<double> prm{1e200, 1e200, 1e-150, 0.0};
   NutationMap<double> map;
   ASSERT_EQ(make_nutation_map(prm, map), Status::kOk);
@@ -606,6 +624,7 @@ TEST(NutationMap, AnUnderflowingOmega0LeavesSteadyOnly) {
 }
 
 TEST(NutationMap, BadParametersAreRefusedUntouched) {
+  GYRO_VERIFIES("EXACT-5");
   NutationMap<double> map;
   map.envelope = 42.0;
   EXPECT_EQ(make_nutation_map(RotorParameters<double>{2.25, 2.0, -1.0, 100.0}, map), Status::kNegativeFriction);
@@ -615,6 +634,7 @@ TEST(NutationMap, BadParametersAreRefusedUntouched) {
 }
 
 TEST(TorqueForPrecessionRate, RefusesBadInputUntouched) {
+  GYRO_VERIFIES("EXACT-5");
   const RotorParameters<double> rotor{2.25, 2.0, 5.0, angular_momentum(100.0, 3.0)};
   const Vector2<double> untouched(7.0, -7.0);
   Vector2<double> out = untouched;

@@ -3,6 +3,7 @@
 
 #include "gyro/nutation.hpp"
 #include "gyro/rotor_transition.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace {
@@ -13,6 +14,7 @@ RotorParameters<double> report_rotor() {
 }
 
 TEST(RotorModes, GivenReportGyroThenNutationMatchesInitg) {
+  GYRO_VERIFIES("EXACT-3");
   RotorModes<double> m;
   ASSERT_EQ(compute_modes(report_rotor(), m), Status::kOk);
   // INITG: BETA = SQRT((F*F+H*H)/(GJ1*GJ2) - ALPHA**2), GNUTAT = BETA/(2 PI).
@@ -26,6 +28,7 @@ TEST(RotorModes, GivenReportGyroThenNutationMatchesInitg) {
 }
 
 TEST(RotorModes, GivenEqualInertiasThenNutationRateIsHOverJForAnyFriction) {
+  GYRO_VERIFIES("EXACT-3");
   for (double f : {0.0, 1.0, 100.0, 1e4}) {
     RotorModes<double> m;
     ASSERT_EQ(compute_modes(RotorParameters<double>{2.0, 2.0, f, 50.0}, m), Status::kOk);
@@ -34,6 +37,7 @@ TEST(RotorModes, GivenEqualInertiasThenNutationRateIsHOverJForAnyFriction) {
 }
 
 TEST(SteadyPrecession, GivenTorqueThenRateIsReportK5K6AndInverseRoundTrips) {
+  GYRO_VERIFIES("EXACT-3");
   const RotorParameters<double> p = report_rotor();
   const Vector2<double> torque(3.0, -7.0);
   Vector2<double> rate = Vector2<double>::Zero();
@@ -47,6 +51,7 @@ TEST(SteadyPrecession, GivenTorqueThenRateIsReportK5K6AndInverseRoundTrips) {
 }
 
 TEST(SteadyPrecession, GivenNoSpinAndNoFrictionThenRefused) {
+  GYRO_VERIFIES("EXACT-5");
   Vector2<double> rate(1.0, 2.0);
   EXPECT_EQ(steady_precession_rate(RotorParameters<double>{1.0, 1.0, 0.0, 0.0},
                                    Vector2<double>(1.0, 0.0), rate),

@@ -9,6 +9,7 @@
 
 #include "gyro/seeker_example.hpp"
 #include "gyro/sil_loop.hpp"
+#include "support/requirements.hpp"
 #include "support/sil_fixture.hpp"
 
 namespace gyro {
@@ -60,6 +61,7 @@ struct LoopRun {
 };
 
 TYPED_TEST(SilLoopTest, GivenTwoLoopsWithIdenticalInputsThenEveryTickIsBitIdentical) {
+  GYRO_VERIFIES("STUB-2");
   using T = TypeParam;
   for (const StubBodyFeed feed : {StubBodyFeed::kFull, StubBodyFeed::kAttitude}) {
     LoopRun<T> a(feed), b(feed);
@@ -81,6 +83,7 @@ TYPED_TEST(SilLoopTest, GivenTwoLoopsWithIdenticalInputsThenEveryTickIsBitIdenti
 }
 
 TYPED_TEST(SilLoopTest, GivenATickThenTheStubAdvancesFirstAndHoldsTheTorqueTheComponentWrote) {
+  GYRO_VERIFIES("STUB-2");
   using T = TypeParam;
   LoopRun<T> r(StubBodyFeed::kFull);
   ASSERT_EQ(r.loop.start(LoopRun<T>::body_at(0)).component, Status::kOk);
@@ -104,6 +107,7 @@ TYPED_TEST(SilLoopTest, GivenATickThenTheStubAdvancesFirstAndHoldsTheTorqueTheCo
 }
 
 TYPED_TEST(SilLoopTest, GivenTheAttitudeFeedThenTheStubTakesTheRateFromTheAttitudesAndTheForceAcross) {
+  GYRO_VERIFIES("STUB-2");
   using T = TypeParam;
   LoopRun<T> r(StubBodyFeed::kAttitude);
   BodySample<T> body = turning_body(Matrix3<T>(Matrix3<T>::Identity()), Vector2<T>(T(0.4), T(-0.3)));
@@ -154,6 +158,7 @@ struct SkippingComputer {
 };
 
 TEST(SilLoop, GivenAComputerThatSkipsTicksThenTheStubStillAdvancesAndTheSkipIsReported) {
+  GYRO_VERIFIES("STUB-2", "TICK-2");
   LoopRun<double> r(StubBodyFeed::kFull);
   SkippingComputer computer{r.component};
   SilLoop<double, SkippingComputer> loop(r.stub, computer);

@@ -24,7 +24,6 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "errors.hpp"
-#include "gyro/enum_names.hpp"
 #include "gyro/gyro_component.hpp"
 #include "gyro/sil_contract.hpp"
 #include "gyro/sil_loop.hpp"
@@ -157,7 +156,7 @@ template <typename T>
 py::dict telemetry_dict(const GyroTelemetry<T>& t) {
   py::dict d;
   d["tick"] = t.tick;
-  d["mode"] = enum_name_or(t.mode, "unknown");
+  d["mode"] = enum_name_or(t.mode, "?");
   d["flags"] = t.flags;
   d["flag_names"] = flag_list(t.flags);
   py::dict counters;
@@ -294,7 +293,7 @@ void bind_component(py::module_& m, const char* name, const char* stub_name, con
           "attitude and rates from navigation. Returns a gyro.Status (OK, INPUT_IGNORED, ...).")
       .def_property_readonly("telemetry", [](const H& h) { return telemetry_dict(h.component.telemetry()); },
                              "This tick's telemetry as a dict (GyroTelemetry's members; flags also by name).")
-      .def_property_readonly("mode", [](const H& h) { return std::string(enum_name_or(h.component.mode(), "unknown")); },
+      .def_property_readonly("mode", [](const H& h) { return std::string(enum_name_or(h.component.mode(), "?")); },
                              "'idle', 'caged', 'uncaging', 'free' or 'fault'.")
       .def_property_readonly("config", [](const H& h) { return fields_to_dict(h.component.config()); },
                              "The configuration as a dict.")

@@ -8,6 +8,7 @@
 
 #include "gyro/estimator.hpp"
 #include "gyro/seeker_component_example.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace estimator_test {
@@ -29,6 +30,7 @@ Estimator<double> started_at(const Vector2<double>& g) {
 }
 
 TEST(Estimator, ItStartsAtTheMeasuredAnglesWhenMeasurable) {
+  GYRO_VERIFIES("EST-1");
   Estimator<double> e = configured();
   const Vector2<double> g(0.1, -0.05);
   const Prediction blind = e.predict(1, kSpin, kStill, false, g);
@@ -42,6 +44,7 @@ TEST(Estimator, ItStartsAtTheMeasuredAnglesWhenMeasurable) {
 }
 
 TEST(Estimator, ARefusedStartChangesNothing) {
+  GYRO_VERIFIES("EST-1", "RULE-9");
   Estimator<double> e = configured();
   const Navigation<double> bad(CheckedRotation<double>(),
                                Vector3<double>(0, std::numeric_limits<double>::quiet_NaN(), 0));
@@ -51,6 +54,7 @@ TEST(Estimator, ARefusedStartChangesNothing) {
 }
 
 TEST(Estimator, AFreeGyroOnAStillBodyHoldsItsAngles) {
+  GYRO_VERIFIES("EST-2");
   const Vector2<double> g(0.1, -0.05);
   Estimator<double> e = started_at(g);
   for (int k = 0; k < 200; ++k) {
@@ -63,6 +67,7 @@ TEST(Estimator, AFreeGyroOnAStillBodyHoldsItsAngles) {
 }
 
 TEST(Estimator, ElapsedTicksSpanTheWholeGap) {
+  GYRO_VERIFIES("EST-2", "TICK-2");
   // A torque held precesses the gyro at T/H (0.13 rad/s): 2.7e-4 rad over four ticks.
   const Vector2<double> torque(0.01, 0.0);
   Estimator<double> one_by_one = started_at(Vector2<double>::Zero());
@@ -79,6 +84,7 @@ TEST(Estimator, ElapsedTicksSpanTheWholeGap) {
 }
 
 TEST(Estimator, TheResidualFeedsBackItsGainPerTick) {
+  GYRO_VERIFIES("EST-3");
   // Measured 1 mrad off a gyro at rest: each tick takes the gain's share of the residual.
   Estimator<double> e = started_at(Vector2<double>::Zero());
   const Vector2<double> measured(1e-3, -5e-4);
@@ -95,6 +101,7 @@ TEST(Estimator, TheResidualFeedsBackItsGainPerTick) {
 }
 
 TEST(Estimator, ARefusedStepStopsItUntilTheNextReading) {
+  GYRO_VERIFIES("EST-4");
   Estimator<double> e = started_at(Vector2<double>(0.05, 0.0));
   const Prediction refused =
       e.predict(1, std::numeric_limits<double>::infinity(), kStill, true, Vector2<double>(0.05, 0.0));
@@ -107,6 +114,7 @@ TEST(Estimator, ARefusedStepStopsItUntilTheNextReading) {
 }
 
 TEST(Estimator, TheFrameIsTheEstimatorsOnlyWithNavigation) {
+  GYRO_VERIFIES("EST-7");
   const Vector2<double> started(0.2, -0.1), pickoffs(-0.3, 0.25);
   Estimator<double> e = configured();
   EXPECT_EQ(e.frame(true, pickoffs).spin_axis_body, gimbal_frame_at(pickoffs).spin_axis_body) << "not started";
@@ -117,6 +125,7 @@ TEST(Estimator, TheFrameIsTheEstimatorsOnlyWithNavigation) {
 }
 
 TEST(Estimator, RestartWaitsForTheNextReading) {
+  GYRO_VERIFIES("EST-4", "MODE-5");
   Estimator<double> e = started_at(Vector2<double>(0.05, 0.0));
   e.restart();
   EXPECT_FALSE(e.ready());

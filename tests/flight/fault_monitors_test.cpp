@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "gyro/fault_monitors.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace fault_monitors_test {
@@ -29,6 +30,7 @@ int ticks_to_fault(Feed feed) {
 }
 
 TEST(FaultMonitors, EachConditionLatchesAfterItsPersistence) {
+  GYRO_VERIFIES("FAULT-1", "MODE-4");
   const Persistences p;
   EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) { return m.update(FaultConditions{true, false, false}, p); }), 3);
   EXPECT_EQ(ticks_to_fault([&](FaultMonitors& m) { return m.update(FaultConditions{false, true, false}, p); }), 4);
@@ -47,6 +49,7 @@ TEST(FaultMonitors, EachConditionLatchesAfterItsPersistence) {
 }
 
 TEST(FaultMonitors, OnlyThePersistedInputConditionIsFlagged) {
+  GYRO_VERIFIES("INPUT-5");
   const Persistences p;
   FaultMonitors m;
   for (int k = 1; k < 6; ++k) EXPECT_EQ(m.update(FaultConditions{false, false, true}, p).flags, 0u);
@@ -56,6 +59,7 @@ TEST(FaultMonitors, OnlyThePersistedInputConditionIsFlagged) {
 }
 
 TEST(FaultMonitors, ResettingTheResidualClearsItsFill) {
+  GYRO_VERIFIES("FAULT-2");
   const Persistences p;
   FaultMonitors m;
   for (int k = 1; k < 7; ++k) EXPECT_EQ(m.test_residual(kOver, false, p), 0u);
@@ -65,6 +69,7 @@ TEST(FaultMonitors, ResettingTheResidualClearsItsFill) {
 }
 
 TEST(FaultMonitors, AResidualOverItsLimitIsFlaggedOnceItPersists) {
+  GYRO_VERIFIES("FAULT-2");
   const Persistences p;
   FaultMonitors m;
   for (int k = 1; k < 7; ++k) EXPECT_EQ(m.test_residual(kOver, false, p), 0u) << k;
@@ -76,6 +81,7 @@ TEST(FaultMonitors, AResidualOverItsLimitIsFlaggedOnceItPersists) {
 }
 
 TEST(FaultMonitors, SafeModeDropsTheResidualsFill) {
+  GYRO_VERIFIES("FAULT-2");
   const Persistences p;
   FaultMonitors m;
   for (int k = 1; k < 7; ++k) EXPECT_EQ(m.test_residual(kOver, false, p), 0u);
@@ -85,6 +91,7 @@ TEST(FaultMonitors, SafeModeDropsTheResidualsFill) {
 }
 
 TEST(FaultMonitors, AGoodWriteClearsTheTorquerCondition) {
+  GYRO_VERIFIES("PORT-2");
   const Persistences p;
   FaultMonitors m;
   for (int k = 0; k < 4; ++k) {

@@ -4,17 +4,20 @@
 #include <limits>
 
 #include "gyro/flag_counters.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace flag_counters_test {
 
 TEST(FlagCounters, EachSingleFlagHasItsOwnBitNumber) {
+  GYRO_VERIFIES("TLM-2");
   for (int bit = 0; bit < 32; ++bit) {
     EXPECT_EQ(flag_bit(1u << static_cast<unsigned>(bit)), static_cast<std::size_t>(bit));
   }
 }
 
 TEST(FlagCounters, EachRaisedFlagCountsOnce) {
+  GYRO_VERIFIES("TLM-2");
   FlagCounts c{};
   count_flags(c, kPickoffStale | kNavInvalid | kRequestRefused);
   count_flags(c, kNavInvalid);
@@ -25,12 +28,14 @@ TEST(FlagCounters, EachRaisedFlagCountsOnce) {
 }
 
 TEST(FlagCounters, EveryFlagAtOnceCountsEachOnce) {
+  GYRO_VERIFIES("TLM-2");
   FlagCounts c{};
   count_flags(c, 0xFFFFFFFFu);
   for (const std::uint32_t n : c) EXPECT_EQ(n, 1u);
 }
 
 TEST(FlagCounters, ACleanTickCountsNothing) {
+  GYRO_VERIFIES("TLM-2");
   FlagCounts c{};
   c.fill(7u);
   const FlagCounts before = c;
@@ -41,6 +46,7 @@ TEST(FlagCounters, ACleanTickCountsNothing) {
 }
 
 TEST(FlagCounters, ACountStopsAtItsLargestValue) {
+  GYRO_VERIFIES("TLM-2");
   FlagCounts c{};
   c[6] = std::numeric_limits<std::uint32_t>::max() - 1u;
   count_flags(c, kResidualFault);

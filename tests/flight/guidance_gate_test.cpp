@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "gyro/guidance_gate.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace guidance_gate_test {
@@ -22,6 +23,7 @@ GuidanceInput<double> with_nav(const Vector3<double>& rate) {
 }
 
 TEST(GuidanceGate, AUsableInputIsTakenAsSent) {
+  GYRO_VERIFIES("INPUT-1", "INPUT-4");
   GuidanceGate<double> g;
   GuidanceInput<double> in = with_nav(Vector3<double>(1, -2, 3));
   in.request = ModeRequest::kUncage;
@@ -36,6 +38,7 @@ TEST(GuidanceGate, AUsableInputIsTakenAsSent) {
 }
 
 TEST(GuidanceGate, AnUnknownRequestIsDroppedAndRejected) {
+  GYRO_VERIFIES("INPUT-2");
   GuidanceGate<double> g;
   GuidanceInput<double> in;
   in.request = static_cast<ModeRequest>(7);
@@ -45,6 +48,7 @@ TEST(GuidanceGate, AnUnknownRequestIsDroppedAndRejected) {
 }
 
 TEST(GuidanceGate, ANonFiniteSlewIsIgnoredAndTheLastOneHeld) {
+  GYRO_VERIFIES("INPUT-1");
   GuidanceGate<double> g;
   GuidanceInput<double> in = with_nav(Vector3<double>::Zero());
   in.slew_rate_cmd_rad_s = Vector2<double>(0.3, 0.4);
@@ -57,6 +61,7 @@ TEST(GuidanceGate, ANonFiniteSlewIsIgnoredAndTheLastOneHeld) {
 }
 
 TEST(GuidanceGate, NavigationMarkedInvalidIsNoRejectedCommand) {
+  GYRO_VERIFIES("INPUT-3");
   GuidanceGate<double> g;
   (void)g.accept(with_nav(Vector3<double>(0.1, 0.2, 0.3)), kMaxBodyRate);
   GuidanceInput<double> in = with_nav(Vector3<double>(9, 9, 9));
@@ -68,6 +73,7 @@ TEST(GuidanceGate, NavigationMarkedInvalidIsNoRejectedCommand) {
 }
 
 TEST(GuidanceGate, NavigationMarkedValidButUnusableIsRejected) {
+  GYRO_VERIFIES("INPUT-4");
   GuidanceInput<double> not_rotation = with_nav(Vector3<double>::Zero());
   not_rotation.R_earth_to_body(0, 0) = 1.5;
   const double just_beyond = std::nextafter(kMaxBodyRate, 1e3);
@@ -83,6 +89,7 @@ TEST(GuidanceGate, NavigationMarkedValidButUnusableIsRejected) {
 }
 
 TEST(GuidanceGate, ABodyRateAtItsLimitIsBelieved) {
+  GYRO_VERIFIES("INPUT-4");
   GuidanceGate<double> g;
   const GuidanceVerdict v = g.accept(with_nav(Vector3<double>(-kMaxBodyRate, 0, kMaxBodyRate)), kMaxBodyRate);
   EXPECT_TRUE(v.nav_ok);
@@ -90,6 +97,7 @@ TEST(GuidanceGate, ABodyRateAtItsLimitIsBelieved) {
 }
 
 TEST(GuidanceGate, TheMeanRateIsOfTheLastTwoUsableRates) {
+  GYRO_VERIFIES("EST-2");
   GuidanceGate<double> g;
   (void)g.accept(with_nav(Vector3<double>(1, 2, 3)), kMaxBodyRate);
   GuidanceInput<double> lost = with_nav(Vector3<double>(-3, -3, -3));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "gyro/mode_logic.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace mode_logic_test {
@@ -16,6 +17,7 @@ ModeTransition next(GyroMode mode, ModeRequest request, bool measurable = true, 
 }
 
 TEST(ModeLogic, CagedUncagesOnRequestAndStartsTheEstimator) {
+  GYRO_VERIFIES("MODE-1", "EST-1");
   const ModeTransition t = next(GyroMode::kCaged, ModeRequest::kUncage, true, false, 7);
   EXPECT_EQ(t.mode, GyroMode::kUncaging);
   EXPECT_EQ(t.estimator, EstimatorAction::kStart);
@@ -24,6 +26,7 @@ TEST(ModeLogic, CagedUncagesOnRequestAndStartsTheEstimator) {
 }
 
 TEST(ModeLogic, UncagingWithoutAMeasurementIsRefused) {
+  GYRO_VERIFIES("MODE-1");
   const ModeTransition t = next(GyroMode::kCaged, ModeRequest::kUncage, false);
   EXPECT_EQ(t.mode, GyroMode::kCaged);
   EXPECT_EQ(t.estimator, EstimatorAction::kKeep);
@@ -31,6 +34,7 @@ TEST(ModeLogic, UncagingWithoutAMeasurementIsRefused) {
 }
 
 TEST(ModeLogic, UncagingFreesTheGyroAfterTheSettleTicks) {
+  GYRO_VERIFIES("MODE-2");
   ModeTransition t{GyroMode::kUncaging, 0, EstimatorAction::kKeep, 0};
   for (std::uint32_t k = 1; k < kSettle; ++k) {
     t = next(t.mode, ModeRequest::kNone, false, false, t.settle_ticks);
@@ -42,6 +46,7 @@ TEST(ModeLogic, UncagingFreesTheGyroAfterTheSettleTicks) {
 }
 
 TEST(ModeLogic, ACageRequestCagesFromUncagingAndFree) {
+  GYRO_VERIFIES("MODE-3");
   EXPECT_EQ(next(GyroMode::kUncaging, ModeRequest::kCage).mode, GyroMode::kCaged);
   EXPECT_EQ(next(GyroMode::kFree, ModeRequest::kCage).mode, GyroMode::kCaged);
   EXPECT_EQ(next(GyroMode::kFree, ModeRequest::kNone).mode, GyroMode::kFree);
@@ -50,6 +55,7 @@ TEST(ModeLogic, ACageRequestCagesFromUncagingAndFree) {
 }
 
 TEST(ModeLogic, AFaultLatchesSafeModeFromEveryMode) {
+  GYRO_VERIFIES("MODE-4");
   for (const GyroMode m : {GyroMode::kCaged, GyroMode::kUncaging, GyroMode::kFree, GyroMode::kFault}) {
     const ModeTransition t = next(m, ModeRequest::kNone, true, true);
     EXPECT_EQ(t.mode, GyroMode::kFault);
@@ -58,11 +64,13 @@ TEST(ModeLogic, AFaultLatchesSafeModeFromEveryMode) {
 }
 
 TEST(ModeLogic, ARequestAsAFaultLatchesIsRefused) {
+  GYRO_VERIFIES("MODE-5");
   EXPECT_EQ(next(GyroMode::kFree, ModeRequest::kCage, true, true).flags, kRefused);
   EXPECT_EQ(next(GyroMode::kFault, ModeRequest::kCage, true, true).mode, GyroMode::kFault);
 }
 
 TEST(ModeLogic, SafeModeIsLeftByCagingOnly) {
+  GYRO_VERIFIES("MODE-5");
   const ModeTransition cage = next(GyroMode::kFault, ModeRequest::kCage);
   EXPECT_EQ(cage.mode, GyroMode::kCaged);
   EXPECT_EQ(cage.estimator, EstimatorAction::kRestart);
@@ -73,6 +81,7 @@ TEST(ModeLogic, SafeModeIsLeftByCagingOnly) {
 }
 
 TEST(ModeLogic, IdleStaysIdle) {
+  GYRO_VERIFIES("MODE-7");
   EXPECT_EQ(next(GyroMode::kIdle, ModeRequest::kUncage).mode, GyroMode::kIdle);
 }
 

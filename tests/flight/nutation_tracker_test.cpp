@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gyro/nutation_tracker.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace nutation_tracker_test {
@@ -18,6 +19,7 @@ struct Rotor {
 };
 
 TEST(NutationTracker, BetaIsTheMomentumOverTheGimbalInertia) {
+  GYRO_VERIFIES("SHAPE-1");
   NutationTracker<double> n;
   const Rotor r;
   const NutationUpdate<double> u = n.follow(100.0, r);
@@ -29,6 +31,7 @@ TEST(NutationTracker, BetaIsTheMomentumOverTheGimbalInertia) {
 }
 
 TEST(NutationTracker, TheDesignIsKeptWithinTheSpinTolerance) {
+  GYRO_VERIFIES("SHAPE-3");
   NutationTracker<double> n;
   const Rotor r;
   ASSERT_TRUE(n.follow(100.0, r).redesigned);
@@ -38,6 +41,7 @@ TEST(NutationTracker, TheDesignIsKeptWithinTheSpinTolerance) {
 }
 
 TEST(NutationTracker, ForgettingRedesignsAtTheSameSpin) {
+  GYRO_VERIFIES("SHAPE-3");
   NutationTracker<double> n;
   const Rotor r;
   (void)n.follow(100.0, r);
@@ -46,6 +50,7 @@ TEST(NutationTracker, ForgettingRedesignsAtTheSameSpin) {
 }
 
 TEST(NutationTracker, FewerThanTwoTicksPerPeriodAliases) {
+  GYRO_VERIFIES("TLM-3");
   NutationTracker<double> n;
   Rotor r;
   r.tick_s = 1.01 * kPi<double> / (2 * kPi<double> * 100.0 * r.spin_inertia / r.pitch_inertia);
@@ -55,6 +60,7 @@ TEST(NutationTracker, FewerThanTwoTicksPerPeriodAliases) {
 
 // The aliasing follows the spin: beta = pi f here, pi f / 1000 a 1 ms tick, aliased above 1 kHz.
 TEST(NutationTracker, AliasingFollowsTheSpin) {
+  GYRO_VERIFIES("TLM-3", "SHAPE-3");
   NutationTracker<double> n;
   const Rotor r;
   (void)n.follow(1500.0, r);
@@ -66,6 +72,7 @@ TEST(NutationTracker, AliasingFollowsTheSpin) {
 }
 
 TEST(NutationTracker, NoSpinNoNutationNoShaper) {
+  GYRO_VERIFIES("SHAPE-1");
   NutationTracker<double> n;
   const NutationUpdate<double> u = n.follow(0.0, Rotor{});
   EXPECT_TRUE(u.redesigned);

@@ -6,17 +6,20 @@
 #include <cstdint>
 
 #include "gyro/persistence.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace persistence_test {
 
 TEST(PersistenceMonitor, NBadTicksInARowTripItAtTheNth) {
+  GYRO_VERIFIES("FAULT-1");
   PersistenceMonitor m;
   for (std::uint32_t k = 1; k < 10; ++k) EXPECT_FALSE(m.update(true, 10)) << k;
   EXPECT_TRUE(m.update(true, 10));
 }
 
 TEST(PersistenceMonitor, TripsAboveOneBadTickInThreeOnly) {
+  GYRO_VERIFIES("FAULT-1");
   const auto ticks_to_trip = [](int bad, int period, int limit) {
     PersistenceMonitor m;
     for (int k = 0; k < limit; ++k) {
@@ -32,6 +35,7 @@ TEST(PersistenceMonitor, TripsAboveOneBadTickInThreeOnly) {
 }
 
 TEST(PersistenceMonitor, OneGoodTickUntripsACappedFill) {
+  GYRO_VERIFIES("FAULT-1");
   PersistenceMonitor m;
   for (int k = 0; k < 1000; ++k) (void)m.update(true, 5);
   EXPECT_EQ(m.fill(), 10u);

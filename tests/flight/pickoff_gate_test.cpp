@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "gyro/pickoff_gate.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace pickoff_gate_test {
@@ -21,6 +22,7 @@ PickoffReading<double> reading(double pitch, double yaw, std::uint32_t sequence)
 }
 
 TEST(PickoffGate, AValidFreshReadingIsAcceptedAndKept) {
+  GYRO_VERIFIES("PICK-1");
   PickoffGate<double> g;
   const PickoffVerdict v = g.accept(reading(0.1, -0.2, 1), true, 1, true, kLimits);
   EXPECT_TRUE(v.accepted);
@@ -29,6 +31,7 @@ TEST(PickoffGate, AValidFreshReadingIsAcceptedAndKept) {
 }
 
 TEST(PickoffGate, UnusableReadingsAreInvalidAndNotKept) {
+  GYRO_VERIFIES("PICK-1", "PICK-5", "PORT-1");
   PickoffGate<double> g;
   (void)g.accept(reading(0.1, 0.1, 1), true, 1, true, kLimits);
   PickoffReading<double> unset = reading(0.1, 0.1, 2);
@@ -45,6 +48,7 @@ TEST(PickoffGate, UnusableReadingsAreInvalidAndNotKept) {
 }
 
 TEST(PickoffGate, AnUnchangedSequenceIsStale) {
+  GYRO_VERIFIES("PICK-2");
   PickoffGate<double> g;
   (void)g.accept(reading(0.1, 0.1, 7), true, 1, true, kLimits);
   const PickoffVerdict v = g.accept(reading(0.1, 0.1, 7), true, 1, true, kLimits);
@@ -54,6 +58,7 @@ TEST(PickoffGate, AnUnchangedSequenceIsStale) {
 
 // Even with sequence 0, as a driver's first conversion may carry; the same sequence again is stale.
 TEST(PickoffGate, TheFirstReadingIsNeverStaleNorAJump) {
+  GYRO_VERIFIES("PICK-2", "PICK-3");
   PickoffGate<double> g;
   const PickoffVerdict first = g.accept(reading(0.4, 0.0, 0), true, 1, true, kLimits);
   EXPECT_TRUE(first.accepted);
@@ -66,6 +71,7 @@ TEST(PickoffGate, TheFirstReadingIsNeverStaleNorAJump) {
 // A reading exactly at the range is taken; one ulp beyond it, on either axis and either side,
 // is invalid and the last accepted reading stands.
 TEST(PickoffGate, TheRangeIsInclusiveToTheLastBit) {
+  GYRO_VERIFIES("PICK-1");
   constexpr PickoffLimits<double> limits{4e-3, 4e-3};  // the step no tighter than the range
   PickoffGate<double> g;
   std::uint32_t sequence = 1;
@@ -84,6 +90,7 @@ TEST(PickoffGate, TheRangeIsInclusiveToTheLastBit) {
 }
 
 TEST(PickoffGate, AJumpIsRefusedAndDoesNotWidenTheBound) {
+  GYRO_VERIFIES("PICK-3");
   PickoffGate<double> g;
   (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
   EXPECT_EQ(g.accept(reading(0.0101, 0.0, 2), true, 1, true, kLimits).flags, static_cast<std::uint32_t>(kPickoffJump));
@@ -95,6 +102,7 @@ TEST(PickoffGate, AJumpIsRefusedAndDoesNotWidenTheBound) {
 }
 
 TEST(PickoffGate, TheJumpBoundIsInclusive) {
+  GYRO_VERIFIES("PICK-3");
   PickoffGate<double> g;
   constexpr PickoffLimits<double> limits{0.5, 0.125};  // exact in binary
   (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, limits);
@@ -102,6 +110,7 @@ TEST(PickoffGate, TheJumpBoundIsInclusive) {
 }
 
 TEST(PickoffGate, TheBoundWidensWithTicksWithoutInformation) {
+  GYRO_VERIFIES("PICK-3", "TICK-2");
   PickoffGate<double> g;
   (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
   (void)g.accept(reading(0.0, 0.0, 1), true, 2, true, kLimits);  // stale over 2 ticks
@@ -118,6 +127,7 @@ TEST(PickoffGate, TheBoundWidensWithTicksWithoutInformation) {
 // Three invalid readings: the next may have moved four bounds. Accepted, the bound is one
 // tick's again.
 TEST(PickoffGate, InvalidReadingsWidenTheBoundUntilOneIsTaken) {
+  GYRO_VERIFIES("PICK-3");
   PickoffGate<double> g;
   const double bound = kLimits.max_step_rad;
   (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
@@ -138,6 +148,7 @@ TEST(PickoffGate, InvalidReadingsWidenTheBoundUntilOneIsTaken) {
 // A stale reading (the same conversion again) tells as little as an invalid one: the bound
 // widens by one tick's step for each.
 TEST(PickoffGate, StaleReadingsWidenTheBoundAsInvalidOnesDo) {
+  GYRO_VERIFIES("PICK-3");
   PickoffGate<double> g;
   const double bound = kLimits.max_step_rad;
   (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
@@ -151,6 +162,7 @@ TEST(PickoffGate, StaleReadingsWidenTheBoundAsInvalidOnesDo) {
 }
 
 TEST(PickoffGate, WithoutTheJumpTestTheReferenceFollows) {
+  GYRO_VERIFIES("PICK-4");
   PickoffGate<double> g;
   (void)g.accept(reading(0.0, 0.0, 1), true, 1, true, kLimits);
   EXPECT_TRUE(g.accept(reading(0.3, 0.0, 2), true, 1, false, kLimits).accepted);

@@ -7,6 +7,7 @@
 
 #include "gyro/seeker_component_example.hpp"
 #include "gyro/spin_readback.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace spin_readback_test {
@@ -22,12 +23,14 @@ PickoffReading<double> readback(double hz) {
 }
 
 TEST(SpinReadback, AUsableReadbackIsFlown) {
+  GYRO_VERIFIES("SPIN-1");
   const SpinFlown<double> s = spin_flown(readback(390.0), true, kSeeker);
   EXPECT_EQ(s.hz, 390.0);
   EXPECT_EQ(s.flags, 0u);
 }
 
 TEST(SpinReadback, AnUnusableReadbackGivesTheNominalSpin) {
+  GYRO_VERIFIES("SPIN-1");
   PickoffReading<double> unmarked = readback(350.0);
   unmarked.spin_valid = false;
   GyroComponentConfig<double> no_readback = kSeeker;
@@ -44,6 +47,7 @@ TEST(SpinReadback, AnUnusableReadbackGivesTheNominalSpin) {
 // A readback the port marks invalid is no spin, however plausible its value: the nominal is
 // flown and nothing is low; marked valid again, it is flown.
 TEST(SpinReadback, OneMarkedInvalidIsNeitherFlownNorLow) {
+  GYRO_VERIFIES("SPIN-1", "SPIN-2");
   for (const double hz : {350.0, 100.0}) {
     PickoffReading<double> unmarked = readback(hz);
     unmarked.spin_valid = false;
@@ -57,6 +61,7 @@ TEST(SpinReadback, OneMarkedInvalidIsNeitherFlownNorLow) {
 }
 
 TEST(SpinReadback, AnUnrepresentableMomentumGivesTheNominalSpin) {
+  GYRO_VERIFIES("SPIN-1");
   // H = 2 pi J0 spin: with J0 = 1e6 a finite spin of 1e303 Hz has no finite momentum in double.
   GyroComponentConfig<double> heavy = kSeeker;
   heavy.spin_inertia = 1e6;
@@ -71,12 +76,14 @@ TEST(SpinReadback, AnUnrepresentableMomentumGivesTheNominalSpin) {
 }
 
 TEST(SpinReadback, AZeroReadbackIsFlownAndLow) {
+  GYRO_VERIFIES("SPIN-1", "SPIN-2");
   const SpinFlown<double> s = spin_flown(readback(0.0), true, kSeeker);
   EXPECT_EQ(s.hz, 0.0);
   EXPECT_EQ(s.flags, static_cast<std::uint32_t>(kSpinLow));
 }
 
 TEST(SpinReadback, LowIsStrictlyBelowTheMinimum) {
+  GYRO_VERIFIES("SPIN-2");
   const SpinFlown<double> at = spin_flown(readback(kSeeker.min_spin_hz), true, kSeeker);
   EXPECT_EQ(at.hz, kSeeker.min_spin_hz);
   EXPECT_EQ(at.flags, 0u);

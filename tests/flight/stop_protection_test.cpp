@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "gyro/stop_protection.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace stop_protection_test {
@@ -26,6 +27,7 @@ double cone_rate(const Vector2<double>& g, const Vector2<double>& relative) {
 }
 
 TEST(StopProtection, OutwardDirectionIsTheConeAnglesGradient) {
+  GYRO_VERIFIES("STOP-1");
   for (const Vector2<double>& g : {Vector2<double>(0.3, 0.0), Vector2<double>(0.0, -0.25),
                                    Vector2<double>(0.2, 0.2), Vector2<double>(-0.35, 0.1)}) {
     const GimbalFrame<double> f = gimbal_frame_at(g);
@@ -38,6 +40,7 @@ TEST(StopProtection, OutwardDirectionIsTheConeAnglesGradient) {
 }
 
 TEST(StopProtection, FarInsideTheBoundTheRateIsFlownAsAsked) {
+  GYRO_VERIFIES("STOP-1");
   const GimbalFrame<double> f = gimbal_frame_at(Vector2<double>(0.1, 0.05));
   const Vector2<double> wanted(0.3, -0.2), body(0.4, 0.1);
   const ProtectedRate<double> p = protect_stop(f, wanted, body, kBound);
@@ -46,6 +49,7 @@ TEST(StopProtection, FarInsideTheBoundTheRateIsFlownAsAsked) {
 }
 
 TEST(StopProtection, AtTheBoundTheBodysTurnIsFollowed) {
+  GYRO_VERIFIES("STOP-1");
   // A free gyro (no command) on a body yawing at 0.45 rad/s, the gimbal near the protection
   // cone in yaw: the body's turn carries the gimbal outward.
   const Vector2<double> g(0.0, kProtectCone - 0.005);
@@ -60,6 +64,7 @@ TEST(StopProtection, AtTheBoundTheBodysTurnIsFollowed) {
 }
 
 TEST(StopProtection, BeyondTheProtectionConeTheGimbalIsDrivenBack) {
+  GYRO_VERIFIES("STOP-1");
   const Vector2<double> g(kProtectCone + 0.01, 0.02);
   const GimbalFrame<double> f = gimbal_frame_at(g);
   const Vector2<double> wanted(0.2, 0.3);  // a command outward, across too
@@ -71,6 +76,7 @@ TEST(StopProtection, BeyondTheProtectionConeTheGimbalIsDrivenBack) {
 }
 
 TEST(StopProtection, CentredGimbalHasNoOutwardDirection) {
+  GYRO_VERIFIES("STOP-1");
   const GimbalFrame<double> f = gimbal_frame_at(kZero);
   const ProtectedRate<double> p = protect_stop(f, Vector2<double>(50, -50), kZero, kBound);
   EXPECT_FALSE(p.acting);
@@ -78,6 +84,7 @@ TEST(StopProtection, CentredGimbalHasNoOutwardDirection) {
 }
 
 TEST(StopProtection, FloatBoundAgreesWithDouble) {
+  GYRO_VERIFIES("STOP-1", "RULE-8");
   const Vector2<double> g(0.25, -0.15);
   const ProtectedRate<double> d = protect_stop(gimbal_frame_at(g), Vector2<double>(1.0, -1.5),
                                                Vector2<double>(0.1, 0.2), kBound);
@@ -91,6 +98,7 @@ TEST(StopProtection, FloatBoundAgreesWithDouble) {
 }
 
 TEST(TorqueLawInverse, RateForTorquersUndoesTorquersForRate) {
+  GYRO_VERIFIES("TORQ-4");
   for (const Vector2<double>& g : {Vector2<double>(0.0, 0.0), Vector2<double>(0.4, -0.3), Vector2<double>(-1.2, 2.0)}) {
     const GimbalFrame<double> f = gimbal_frame_at(g);
     for (const double friction : {0.0, 4e-4}) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "gyro/tick_tracker.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace tick_tracker_test {
@@ -9,6 +10,7 @@ namespace tick_tracker_test {
 constexpr std::uint64_t kGap = 8;
 
 TEST(TickTracker, ConsecutiveTicksAreOneTickUnflagged) {
+  GYRO_VERIFIES("TICK-1");
   TickTracker t;
   for (std::uint64_t k = 0; k < 5; ++k) {
     const ElapsedTicks e = t.advance(100 + k, kGap);
@@ -18,6 +20,7 @@ TEST(TickTracker, ConsecutiveTicksAreOneTickUnflagged) {
 }
 
 TEST(TickTracker, AJumpUpToTheGapIsBridgedAsLostTicks) {
+  GYRO_VERIFIES("TICK-2");
   TickTracker t;
   (void)t.advance(10, kGap);
   (void)t.advance(11, kGap);
@@ -28,6 +31,7 @@ TEST(TickTracker, AJumpUpToTheGapIsBridgedAsLostTicks) {
 }
 
 TEST(TickTracker, AJumpPastTheGapIsOneTickFlaggedInvalid) {
+  GYRO_VERIFIES("TICK-3");
   TickTracker t;
   (void)t.advance(10, kGap);
   (void)t.advance(11, kGap);
@@ -37,6 +41,7 @@ TEST(TickTracker, AJumpPastTheGapIsOneTickFlaggedInvalid) {
 }
 
 TEST(TickTracker, RepeatsAndStepsBackAreOneTickFlaggedInvalid) {
+  GYRO_VERIFIES("TICK-3");
   TickTracker t;
   (void)t.advance(10, kGap);
   (void)t.advance(11, kGap);
@@ -53,6 +58,7 @@ TEST(TickTracker, RepeatsAndStepsBackAreOneTickFlaggedInvalid) {
 // after it is not believed either; a count following it by one is trusted again, and a gap
 // after that is bridged.
 TEST(TickTracker, NoJumpIsBridgedRightAfterAnUntrustedCount) {
+  GYRO_VERIFIES("TICK-3");
   struct Case {
     std::uint64_t untrusted;  // after 10
     std::uint64_t jump;
@@ -73,6 +79,7 @@ TEST(TickTracker, NoJumpIsBridgedRightAfterAnUntrustedCount) {
 }
 
 TEST(TickTracker, TheFirstCallIsOneTickWhateverItsCount) {
+  GYRO_VERIFIES("TICK-4");
   TickTracker t;
   const ElapsedTicks e = t.advance(123456, kGap);
   EXPECT_EQ(e.ticks, 1u);

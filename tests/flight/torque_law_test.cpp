@@ -6,6 +6,7 @@
 
 #include "gyro/seeker_component_example.hpp"
 #include "gyro/torque_law.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace torque_law_test {
@@ -21,6 +22,7 @@ RateCommand<double> free_slew(const TorqueLaw<double>& law, const Vector2<double
 }
 
 TEST(TorqueLaw, SafeModeDrivesNothing) {
+  GYRO_VERIFIES("TORQ-2");
   const TorqueLaw<double> law(kSeeker);
   const RateCommand<double> r = law.rate_command(GyroMode::kFault, kCentred, Vector2<double>(0.3, 0.2),
                                                  Vector2<double>(0.1, 0.1), true, Vector2<double>(0.5, 0.5));
@@ -31,6 +33,7 @@ TEST(TorqueLaw, SafeModeDrivesNothing) {
 }
 
 TEST(TorqueLaw, CagedTheGimbalClosesOnTheBodyAtTheCageGain) {
+  GYRO_VERIFIES("TORQ-1");
   const TorqueLaw<double> law(kSeeker);
   const Vector2<double> g(0.01, -0.02), body(0.05, -0.03);  // within the rate limits
   const GimbalFrame<double> f = gimbal_frame_at(g);
@@ -45,6 +48,7 @@ TEST(TorqueLaw, CagedTheGimbalClosesOnTheBodyAtTheCageGain) {
 }
 
 TEST(TorqueLaw, UncagingTorquesOnlyWhileProtecting) {
+  GYRO_VERIFIES("TORQ-2", "STOP-1");
   const TorqueLaw<double> law(kSeeker);
   EXPECT_FALSE(law.rate_command(GyroMode::kUncaging, kCentred, Vector2<double>(0.5, 0), kZero, true, kZero).torquing);
   // Near the protection cone (0.45 rad) with the body turning it outward.
@@ -57,6 +61,7 @@ TEST(TorqueLaw, UncagingTorquesOnlyWhileProtecting) {
 }
 
 TEST(TorqueLaw, FreeTheSlewIsFlownWithinItsLimits) {
+  GYRO_VERIFIES("TORQ-2", "TORQ-3");
   GyroComponentConfig<double> c = kSeeker;
   c.max_pitch_rate_rad_s = 0.5;
   c.max_yaw_rate_rad_s = 0.25;
@@ -70,6 +75,7 @@ TEST(TorqueLaw, FreeTheSlewIsFlownWithinItsLimits) {
 }
 
 TEST(TorqueLaw, TorquersHoldTheRateInSteadyPrecession) {
+  GYRO_VERIFIES("TORQ-4");
   // At zero gimbal angles, body at rest: the report's steady precession under T1, T2 is w1 = (f T1
   // - H T2) / (f^2 + H^2), w2 = (H T1 + f T2) / (f^2 + H^2).
   const TorqueLaw<double> law(kSeeker);
@@ -82,6 +88,7 @@ TEST(TorqueLaw, TorquersHoldTheRateInSteadyPrecession) {
 }
 
 TEST(TorqueLaw, WithoutCompensationTheTorqueIsTheReportsHRate) {
+  GYRO_VERIFIES("TORQ-4");
   GyroComponentConfig<double> c = kSeeker;
   c.friction_compensation = false;
   const TorqueLaw<double> law(c);
@@ -92,6 +99,7 @@ TEST(TorqueLaw, WithoutCompensationTheTorqueIsTheReportsHRate) {
 }
 
 TEST(TorqueLaw, TheInnerGimbalsRollAddsToTheMomentum) {
+  GYRO_VERIFIES("TORQ-4");
   const TorqueLaw<double> law(kSeeker);
   const RateCommand<double> r = free_slew(law, Vector2<double>(0, 0.2));
   const double roll = 30.0;
@@ -100,6 +108,7 @@ TEST(TorqueLaw, TheInnerGimbalsRollAddsToTheMomentum) {
 }
 
 TEST(TorqueLaw, BeyondTheTorquerTheSlewIsScaledInDirection) {
+  GYRO_VERIFIES("TORQ-5");
   const TorqueLaw<double> law(kSeeker);
   const Vector2<double> w(0.9, 0.6);  // torquers (0.046, -0.068): within max_torque 0.1, beyond 0.02
   GyroComponentConfig<double> weak = kSeeker;
@@ -114,6 +123,7 @@ TEST(TorqueLaw, BeyondTheTorquerTheSlewIsScaledInDirection) {
 }
 
 TEST(TorqueLaw, OverflowingProductsStillSaturateInDirection) {
+  GYRO_VERIFIES("TORQ-5");
   GyroComponentConfig<double> c = kSeeker;
   c.max_pitch_rate_rad_s = 1e308;
   c.max_yaw_rate_rad_s = 1e308;
@@ -128,6 +138,7 @@ TEST(TorqueLaw, OverflowingProductsStillSaturateInDirection) {
 }
 
 TEST(TorqueLaw, BeyondAuthorityNearTheStopIsFlagged) {
+  GYRO_VERIFIES("STOP-3");
   // The body turns the gimbal outward at the protection cone faster than the torquer can follow:
   // H x 5 rad/s = 0.38, beyond max_torque 0.1 (the rate limits raised out of the way).
   GyroComponentConfig<double> c = kSeeker;
@@ -147,7 +158,35 @@ TEST(TorqueLaw, BeyondAuthorityNearTheStopIsFlagged) {
   EXPECT_EQ(slow.flags, 0u) << "0.5 rad/s is within authority";
 }
 
+TEST(TorqueLaw, SaturatedWhileProtectingTheHoldComesFirst) {
+  GYRO_VERIFIES("STOP-4", "TORQ-5");
+  // At the protection cone the body turns the gimbal outward while guidance asks a slew across;
+  // a weak torquer cannot give both. The part across is dropped: the torque written is the one
+  // that holds the outward rate alone, which this torquer can give unsaturated.
+  GyroComponentConfig<double> weak = kSeeker;
+  weak.max_torque = 0.05;
+  const TorqueLaw<double> law(weak);
+  const Vector2<double> g(0.45, 0.0);
+  const GimbalFrame<double> f = gimbal_frame_at(g);
+  const Vector2<double> body(-0.5, 0.0);
+  const RateCommand<double> r = law.rate_command(GyroMode::kFree, f, body, g, true, Vector2<double>(0.0, 1.0));
+  ASSERT_TRUE(r.protecting);
+  RateCommand<double> asked = r;
+  asked.protecting = false;
+  ASSERT_EQ(law.torque_command(f, asked, body, kSpin, 0.0).flags & kTorquerSaturated,
+            static_cast<std::uint32_t>(kTorquerSaturated))
+      << "the whole command is beyond the torquer";
+  RateCommand<double> hold = asked;
+  hold.rate_rad_s = r.outward * r.outward_rate_rad_s;
+  const TorqueCommand<double> held = law.torque_command(f, hold, body, kSpin, 0.0);
+  ASSERT_EQ(held.flags & kTorquerSaturated, 0u) << "the hold alone is within it";
+  const TorqueCommand<double> t = law.torque_command(f, r, body, kSpin, 0.0);
+  EXPECT_EQ(t.torque, held.torque);
+  EXPECT_EQ(t.flags & kTorquerSaturated, 0u);
+}
+
 TEST(TorqueLaw, ARateCutByItsLimitNearTheStopIsBeyondAuthority) {
+  GYRO_VERIFIES("STOP-3");
   // The seeker's 1 rad/s limit cuts the rate that would follow a body turning at 5 rad/s.
   const TorqueLaw<double> law(kSeeker);
   const Vector2<double> g(0.45, 0.0);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gyro/torque_shaper.hpp"
+#include "support/requirements.hpp"
 
 namespace gyro {
 namespace torque_shaper_test {
@@ -19,6 +20,7 @@ constexpr double kTurn = 2 * kPi<double>;
 double first_tap(int m, double phi) { return 1 / (2 * (1 - std::cos(m * phi))); }
 
 TEST(TorqueShaperDesign, FewestTicksReachingAQuarterTurn) {
+  GYRO_VERIFIES("SHAPE-1");
   const ShaperDesign<double> seeker = design_shaper(1.88);  // the seeker at 2 kHz
   EXPECT_EQ(seeker.spacing, 1u);
   EXPECT_NEAR(seeker.edge, first_tap(1, 1.88), 1e-15);
@@ -33,6 +35,7 @@ TEST(TorqueShaperDesign, FewestTicksReachingAQuarterTurn) {
 
 // A tick aliasing the nutation by less than a turn of m beta dt: the folded phase's design.
 TEST(TorqueShaperDesign, AnAliasedPhaseIsFoldedWithinATurn) {
+  GYRO_VERIFIES("SHAPE-1");
   // The seeker at 1 kHz: beta dt = 3.77 rad, folded 2 pi - 3.77 = 2.51.
   const double seeker = 3769.964 * 1e-3;
   const ShaperDesign<double> d = design_shaper(seeker);
@@ -48,6 +51,7 @@ TEST(TorqueShaperDesign, AnAliasedPhaseIsFoldedWithinATurn) {
 
 // Past a turn of m beta dt, a few per cent of error in beta puts the notch anywhere: none.
 TEST(TorqueShaperDesign, NoShaperWhenAliasedByATurnOrMore) {
+  GYRO_VERIFIES("SHAPE-1");
   for (const double phi : {0.3, 1.2, 2.51, 3.0}) {
     SCOPED_TRACE(phi);
     ASSERT_GT(design_shaper(phi).spacing, 0u);
@@ -58,6 +62,7 @@ TEST(TorqueShaperDesign, NoShaperWhenAliasedByATurnOrMore) {
 }
 
 TEST(TorqueShaperDesign, NoShaperBeyondFifteenTicksOrAtNone) {
+  GYRO_VERIFIES("SHAPE-1");
   const ShaperDesign<double> longest = design_shaper(kPi<double> / 29);  // m = ceil(14.5)
   EXPECT_EQ(longest.spacing, kShaperMaxSpacing);
   EXPECT_NEAR(longest.edge, first_tap(15, kPi<double> / 29), 1e-12);
@@ -68,6 +73,7 @@ TEST(TorqueShaperDesign, NoShaperBeyondFifteenTicksOrAtNone) {
 }
 
 TEST(TorqueShaperDesign, FloatHasTheSpacingOfDouble) {
+  GYRO_VERIFIES("SHAPE-1", "RULE-8");
   for (const double phi : {0.2, 1.0, 2.0, 3.1, 10.0, 100.0}) {
     EXPECT_EQ(design_shaper(static_cast<float>(phi)).spacing, design_shaper(phi).spacing) << phi;
   }
@@ -76,6 +82,7 @@ TEST(TorqueShaperDesign, FloatHasTheSpacingOfDouble) {
 // The share passed is the three taps' gain, summed here as complex numbers: none at the
 // design's own phase (and its aliases), all of a constant torque, all without a shaper.
 TEST(TorqueShaperLeakage, IsTheTapsGainAtThePhase) {
+  GYRO_VERIFIES("SHAPE-2");
   const auto taps = [](const ShaperDesign<double>& d, double phase) {
     const std::complex<double> z = std::polar(1.0, -phase * d.spacing);
     return std::abs(d.edge + (1 - 2 * d.edge) * z + d.edge * z * z);
@@ -101,11 +108,13 @@ TEST(TorqueShaperLeakage, IsTheTapsGainAtThePhase) {
 using V = Vector2<double>;
 
 TEST(TorqueShaperFilter, WithoutADesignTheTorqueIsWrittenAsAsked) {
+  GYRO_VERIFIES("SHAPE-1");
   TorqueShaper<double> s;
   EXPECT_EQ(s.shape(V(0.3, -0.2), 0.1), V(0.3, -0.2)) << "unshaped: not even clamped";
 }
 
 TEST(TorqueShaperFilter, AStepComesOutInThreeTapsMTicksApart) {
+  GYRO_VERIFIES("SHAPE-2");
   TorqueShaper<double> s;
   const ShaperDesign<double> d = design_shaper(0.5);  // m = 4
   ASSERT_EQ(d.spacing, 4u);
@@ -118,6 +127,7 @@ TEST(TorqueShaperFilter, AStepComesOutInThreeTapsMTicksApart) {
 }
 
 TEST(TorqueShaperFilter, AStepExcitesNoNutationAtTheDesignPhase) {
+  GYRO_VERIFIES("SHAPE-2");
   // The filtered step's nutation: sum of its increments times e^{-i phi k}.
   const double phi = 0.5;
   TorqueShaper<double> s;
@@ -133,6 +143,7 @@ TEST(TorqueShaperFilter, AStepExcitesNoNutationAtTheDesignPhase) {
 }
 
 TEST(TorqueShaperFilter, TheOutputStaysWithinTheTorqueLimit) {
+  GYRO_VERIFIES("SHAPE-2");
   TorqueShaper<double> s;
   s.use(design_shaper(2.9));
   for (int k = 0; k < 20; ++k) {
@@ -142,6 +153,7 @@ TEST(TorqueShaperFilter, TheOutputStaysWithinTheTorqueLimit) {
 }
 
 TEST(TorqueShaperFilter, ClearingStartsTheHistoryFromRest) {
+  GYRO_VERIFIES("SHAPE-4");
   TorqueShaper<double> s;
   const ShaperDesign<double> d = design_shaper(0.5);
   s.use(d);

@@ -179,10 +179,15 @@ template SampleRunSummary run_report_sample<double, flight_rules_check::IgnoreSt
 #include "gyro/gimbal_plant.hpp"
 #include "gyro/gimbal_plant_config.hpp"
 #include "gyro/gimbal_stop.hpp"
+#include "gyro/gimbal_substep_control.hpp"
 #include "gyro/seeker_gimbal.hpp"
 #include "gyro/sil_contract.hpp"
 
 namespace gyro {
+template int substeps_after_failure<float>(int, float, float, int) noexcept;
+template int substeps_after_failure<double>(int, double, double, int) noexcept;
+template int substeps_after_success<float>(int, float, float) noexcept;
+template int substeps_after_success<double>(int, double, double) noexcept;
 template class GimbalPlant<float>;
 template class GimbalPlant<double>;
 template ConfigCheck check<float>(const GimbalPlantConfig<float>&) noexcept;

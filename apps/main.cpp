@@ -15,6 +15,7 @@
 // signal (SIGINT, SIGTERM, SIGHUP, SIGPIPE) removes the temporary files and ends gyro_sil
 // with that signal. Every failure prints one line on standard error, --quiet or not.
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -128,6 +129,7 @@ int main(int argc, char** argv) {
   std::string plot_timeout_text;
   std::string pil_timeout_text;
   bool quiet = false;
+  bool resolved = false;
   std::uint64_t ticks = 0;
   PilOptions pil;
   std::vector<std::string> pil_faults;
@@ -147,6 +149,9 @@ int main(int argc, char** argv) {
       "--plot-timeout", plot_timeout_text, "seconds gnuplot may take before it is stopped (default 300, at most 86400)");
   app.add_option("--ticks", ticks, "run this many ticks after tick 0 instead of the scenario's duration")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40));
+  app.add_flag("--resolved", resolved,
+               "write the scenario as it is flown (its example or base expanded, docs/scenarios.md) as JSON to "
+               "--output instead of running it");
   app.add_flag("-q,--quiet", quiet, "no progress or summary on standard error (failures are still reported)");
   CLI::Option* pil_opt = app.add_option("--pil", pil.socket,
                                         "processor in the loop: run the component on the target behind this UNIX "
@@ -242,6 +247,20 @@ int main(int argc, char** argv) {
     return fail(kExitRefused, std::string("refused: ") + e.what());
   } catch (const OutputError& e) {
     return fail(kExitRunFailed, e.what());
+  }
+  if (resolved) {
+    try {
+      CsvSink out = open_csv(plan.csv, false);
+      const std::string text = scenario.document->dump(2) + "\n";
+      if (std::fwrite(text.data(), 1, text.size(), out.out()) != text.size()) {
+        return fail(kExitRunFailed, "writing " + out.name + " failed");
+      }
+      out.finish();
+      out.commit();
+    } catch (const OutputError& e) {
+      return fail(kExitRunFailed, e.what());
+    }
+    return 0;
   }
   if (ticks != 0) scenario.run.ticks = ticks;
   const std::uint64_t csv_bound = csv_size_bound(scenario);

@@ -17,6 +17,7 @@
 
 #include "bounded_read.hpp"
 #include "printable.hpp"
+#include "scenario_base.hpp"
 #include "scenario_defaults.hpp"
 #include "strict_json.hpp"
 
@@ -504,7 +505,7 @@ Scenario parse_scenario(std::string_view json_text, const std::string& file) {
   } catch (const JsonRefusal& r) {
     throw ScenarioError(file, r.field(), r.reason());
   }
-  return parse_scenario_document(doc, file);
+  return parse_scenario_document(resolve_scenario_base(doc, std::filesystem::path(file).parent_path(), file), file);
 }
 
 namespace {

@@ -299,7 +299,7 @@ TEST(CampaignFile, GivenTextThatIsNotJsonOrHasADuplicateKeyThenTheRefusalNamesWh
 TEST(CampaignFile, GivenABaseScenarioFileWithADuplicateKeyThenItIsRefusedNamingThatFile) {
   const fs::path tmp = fs::temp_directory_path() / ("campaign_test_dup_" + std::to_string(::getpid()) + ".json");
   std::string text = slurp(kSource / "scenarios/seeker_slew.json");
-  text.replace(text.find("\"friction\": 0.0004,"), 0, "\"friction\": 1.0, ");
+  text.replace(text.find("\"max_torque\": 0.04,"), 0, "\"max_torque\": 1.0, ");
   std::ofstream(tmp) << text;
   json j = valid_campaign();
   j["base"] = tmp.string();
@@ -308,7 +308,7 @@ TEST(CampaignFile, GivenABaseScenarioFileWithADuplicateKeyThenItIsRefusedNamingT
     ADD_FAILURE() << "accepted";
   } catch (const CampaignError& e) {
     EXPECT_EQ(e.file(), tmp.string());
-    EXPECT_EQ(e.field(), "gyro.rotor.friction");
+    EXPECT_EQ(e.field(), "component.max_torque");
   }
   fs::remove(tmp);
 }

@@ -779,4 +779,20 @@ TEST(SilCliValidation, GivenTheSampleThenItStillRunsAndQuietPrintsNothing) {
   EXPECT_EQ(listing(s.work()), (std::vector<std::string>{"a.csv", "p.png", "s.json"}));
 }
 
+// ---------------------------------------------------------------------------------------
+// --resolved
+
+TEST(SilCliResolved, GivenAScenarioOnABaseThenResolvedWritesItAsFlownAndRunsNothing) {
+  Scratch s;
+  const Result r = run(s, {(kSource / "scenarios" / "fault_dead_torquer.json").string(), "--resolved", "-o", "r.json"});
+  EXPECT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_EQ(listing(s.work()), (std::vector<std::string>{"r.json"}));
+  const json d = json::parse(slurp(s.work() / "r.json"));
+  EXPECT_FALSE(d.contains("base"));
+  EXPECT_FALSE(d.contains("example"));
+  EXPECT_EQ(d["gyro"]["rotor"]["pitch_inertia"], 2e-5);      // from the seeker example
+  EXPECT_EQ(d["gyro"]["torquer"]["max_torque"], 0.05);       // from seeker_slew.json
+  EXPECT_EQ(d["gyro"]["faults"][0]["kind"], "dead_torquer");  // its own
+}
+
 }  // namespace

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bounded_read.hpp"
+#include "scenario_base.hpp"
 #include "campaign_error.hpp"
 #include "scenario.hpp"
 #include "sil_runner.hpp"
@@ -95,6 +96,16 @@ json read_json_file(const std::filesystem::path& path, const std::string& refer_
   const std::optional<std::string> text = sil::read_bounded(path.string(), sil::kMaxScenarioBytes, "a scenario", why);
   if (!text) throw CampaignError(campaign_file, field, "the base scenario \"" + refer_as + "\": " + why);
   return parse_campaign_json(*text, path.string());
+}
+
+// The base scenario with its own example or base expanded (scenario_base.hpp).
+json resolve_base(const json& base, const std::filesystem::path& dir, const std::string& refer_as,
+                  const std::string& campaign_file) {
+  try {
+    return sil::resolve_scenario_base(base, dir, refer_as);
+  } catch (const sil::ScenarioError& e) {
+    throw CampaignError(campaign_file, "base", refer_as + ": " + e.field() + ": " + e.reason());
+  }
 }
 
 bool overlaps(const std::vector<PathStep>& a, const std::vector<PathStep>& b) {
@@ -729,10 +740,11 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   if (base.is_string()) {
     c.base_source = base.get<std::string>();
     c.base_path = base_dir / c.base_source;
-    c.base = read_json_file(*c.base_path, c.base_source, "base", c.file);
+    c.base = resolve_base(read_json_file(*c.base_path, c.base_source, "base", c.file), c.base_path->parent_path(),
+                          c.base_source, c.file);
   } else if (base.is_object()) {
     c.base_source = "inline";
-    c.base = base;
+    c.base = resolve_base(base, base_dir, "inline", c.file);
   } else {
     top.fail("base", "expected a scenario file's path or a scenario object, got " + describe_json(base));
   }

@@ -5,7 +5,8 @@ Exact dynamics:   RotorParameters, make_transition, advance, propagate (one stat
 Models:           GyroModel / GyroModelF32, GimbalPlant / GimbalPlantF32 (float64 / float32).
 Flight loop:      SimulatedGyro, GyroComponent, SilLoop (and their F32 twins): the component
                   closed around a body and a guidance of one's own.
-Runs:             run_sil (a scenario file or dict -> SilRun), run_campaign (-> CampaignRun).
+Runs:             run_sil (a scenario file or dict -> SilRun), run_campaign (-> CampaignRun);
+                  read_scenario (a scenario as flown, its example or base expanded).
 Examples:         examples.seeker(), examples.report(): the example gyros' configurations,
                   as each constructor takes them.
 Report sample:    report_sample.run() (figures A-1, A-2 of the report).
@@ -42,6 +43,7 @@ from ._gyro import (
     frame_rotation_z,
     make_transition,
     propagate,
+    read_scenario,
     sil_columns,
     status_text,
     steady_precession_rate,
@@ -55,7 +57,7 @@ __all__ = [
     "SilLoop", "SilLoopF32", "SimulatedGyro", "SimulatedGyroF32",
     "RotorParameters", "Status", "Transition", "TransitionF32", "advance", "angular_momentum",
     "component_flag_names", "compute_modes", "frame_rotation_y", "frame_rotation_z", "make_transition",
-    "propagate", "sil_columns", "status_text", "steady_precession_rate", "run_sil", "run_campaign",
+    "propagate", "read_scenario", "sil_columns", "status_text", "steady_precession_rate", "run_sil", "run_campaign",
     "ConfigError", "GyroError", "RunError", "ScenarioError", "StatusError", "CampaignRun", "SilRun", "errors", "examples", "report_sample",
 ]
 

@@ -41,8 +41,9 @@ def _example(name):
 
 def seeker() -> Example:
     """The seeker gyro (gyro/seeker_example.hpp): SI, on the gimbal plant, 2 kHz tick, ideal
-    pickoffs and torquers. scenarios/seeker_slew.json flies the same rotor and gimbal at 1 kHz
-    with the device's imperfections and other limits (docs/gyro-model.md)."""
+    pickoffs and torquers. scenarios/seeker_slew.json builds on it ("example": "seeker") and
+    lists what the device it flies changes: 1 kHz, the imperfections, other limits
+    (docs/scenarios.md, "Examples and bases")."""
     return _example("seeker")
 
 

@@ -17,6 +17,8 @@
 #include "bindings.hpp"
 #include "interrupt.hpp"
 #include "errors.hpp"
+#include <nlohmann/json.hpp>
+
 #include "scenario.hpp"
 #include "scenario_source.hpp"
 #include "sil_columns.hpp"
@@ -127,9 +129,25 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
   return py::make_tuple(recorder.arrays(), telemetry(sum));
 }
 
+// The scenario as it is flown: its example or base expanded (apps/scenario_base.hpp), as a dict.
+py::object read_scenario(const py::object& scenario) {
+  const DocumentSource src = document_source(scenario, "scenario");
+  std::string text;
+  try {
+    const sil::Scenario s = src.path ? sil::read_scenario(*src.path) : sil::parse_scenario(src.text, src.name);
+    text = s.document->dump();
+  } catch (const sil::ScenarioError& e) {
+    raise_python("ScenarioError", py::make_tuple(std::string(e.what()), e.field(), e.file()));
+  }
+  return py::module_::import("json").attr("loads")(text);
+}
+
 }  // namespace
 
 void bind_sil_run(py::module_& m) {
+  m.def("read_scenario", &read_scenario, py::arg("scenario"),
+        "The scenario (a file path or a dict) as it is flown, its example or base expanded, as a dict: "
+        "its \"gyro\" and \"component\" sections are SimulatedGyro's and GyroComponent's keywords.");
   m.def("_run_sil", &run_sil, py::arg("scenario"), py::arg("precision") = py::none(), py::arg("ticks") = py::none(),
         py::arg("max_output_bytes") = sil::kDefaultMaxOutputBytes,
         "(columns, telemetry) of a SIL run; gyro.run_sil wraps it in a SilRun.");

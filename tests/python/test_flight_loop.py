@@ -2,8 +2,6 @@
 is gyro_sil's loop (the same time history), their keywords are a scenario's sections, and the
 example gyros construct them."""
 
-import json
-
 import numpy as np
 import pytest
 
@@ -11,7 +9,7 @@ import gyro
 
 
 def scenario(source_dir, name):
-    return json.loads((source_dir / "scenarios" / name).read_text())
+    return gyro.read_scenario(source_dir / "scenarios" / name)
 
 
 def at_rest(doc):
@@ -58,7 +56,7 @@ def test_given_a_scenario_when_flown_by_a_python_loop_then_its_history_is_gyro_s
 
 def test_given_every_shipped_scenario_then_its_sections_are_the_keywords(source_dir):
     for path in sorted((source_dir / "scenarios").glob("*.json")):
-        doc = json.loads(path.read_text())
+        doc = gyro.read_scenario(path)
         run = doc["run"]
         tick_s = run["tick_s"] if "tick_s" in run else 1.0 / run["rate_hz"]
         for stub_class, component_class in ((gyro.SimulatedGyro, gyro.GyroComponent),

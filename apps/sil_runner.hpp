@@ -4,7 +4,8 @@
 // Tick 0: the stub powers up aligned with the body (start), the component is activated
 // (caged) and steps once on the power-up conversion. Then for k = 1 .. run.ticks:
 //   body motion to tick k -> stub.advance(k, R_earth_to_body, accel)
-//   -> guidance for tick k (schedule) -> component.step(k, guidance) -> CSV row
+//   -> guidance for tick k (schedule; from guidance.track.start_s the tracker's slew command,
+//      los_tracking.hpp) -> component.step(k, guidance) -> CSV row
 // (a tick of gyro/sil_loop.hpp, the loop every SIL user runs).
 // The CSV has one row per tick, run.ticks + 1 rows after the header.
 #pragma once

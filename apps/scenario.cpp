@@ -456,6 +456,73 @@ std::vector<GuidanceEvent> parse_guidance(const Reader& r, const RunSpec& run, c
   return out;
 }
 
+Eigen::Vector3d vector3(const Reader& r, std::string_view key) {
+  const std::array<double, 3> v = r.numbers<3>(key);
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+// guidance.track (docs/scenarios.md): the LOS, the gain and the start; the schedule's slew
+// commands from the start on would be overridden, so they are refused.
+TrackSpec parse_track(const Reader& guidance, const RunSpec& run, const std::vector<GuidanceEvent>& schedule) {
+  const Reader r = guidance.object("track", {"start_s", "gain_1_s", "line_of_sight", "target", "own"});
+  TrackSpec t;
+  t.start_s = r.non_negative("start_s", 0);
+  t.start_tick = ticks_at(r, "start_s", t.start_s, run.tick_s);
+  t.gain_1_s = r.non_negative("gain_1_s", 0);
+  const double max_gain = kMaxTrackGainTicks / run.tick_s;
+  if (t.gain_1_s > max_gain) {
+    r.fail("gain_1_s", "must be <= " + Reader::format(max_gain) + " (" + Reader::format(kMaxTrackGainTicks) +
+                           " / " + run.tick_field + ": the loop sees a one-tick-old estimate), got " +
+                           Reader::format(t.gain_1_s));
+  }
+  const bool inertial = r.has("line_of_sight"), geometry = r.has("target");
+  if (inertial == geometry) {
+    r.fail(inertial ? "target" : "line_of_sight",
+           "give either \"line_of_sight\" (an inertial direction and rate) or \"target\" (and \"own\") positions "
+           "and velocities, exactly one");
+  }
+  LineOfSightSpec& los = t.los;
+  if (inertial) {
+    if (r.has("own")) r.fail("own", "only with \"target\": the own position makes a LOS with the target's");
+    const Reader l = r.object("line_of_sight", {"direction", "rate_rad_s"});
+    los.source = LineOfSightSpec::Source::kInertial;
+    const Eigen::Vector3d d = vector3(l, "direction");
+    if (!(d.norm() > 0) || !std::isfinite(d.norm())) {
+      l.fail("direction", "must be a non-zero finite vector, got length " + Reader::format(d.norm()));
+    }
+    los.direction = d.normalized();
+    los.rate_rad_s = l.has("rate_rad_s") ? vector3(l, "rate_rad_s") : Eigen::Vector3d::Zero();
+    if (!(los.rate_rad_s.norm() <= kMaxLosRateRadS)) {
+      l.fail("rate_rad_s", "its magnitude must be <= " + Reader::format(kMaxLosRateRadS) + " rad/s, got " +
+                               Reader::format(los.rate_rad_s.norm()));
+    }
+  } else {
+    los.source = LineOfSightSpec::Source::kTargetGeometry;
+    const Reader target = r.object("target", {"position_m", "velocity_m_s"});
+    los.target_position_m = vector3(target, "position_m");
+    los.target_velocity_m_s = target.has("velocity_m_s") ? vector3(target, "velocity_m_s") : Eigen::Vector3d::Zero();
+    if (r.has("own")) {
+      const Reader own = r.object("own", {"position_m", "velocity_m_s"});
+      los.own_position_m = own.has("position_m") ? vector3(own, "position_m") : Eigen::Vector3d::Zero();
+      los.own_velocity_m_s = own.has("velocity_m_s") ? vector3(own, "velocity_m_s") : Eigen::Vector3d::Zero();
+    }
+    const double duration = static_cast<double>(run.ticks) * run.tick_s;
+    const double closest = closest_range_m(los, duration);
+    if (!(closest >= kMinTrackRangeM) || !std::isfinite(closest)) {
+      r.fail("target", "the target comes within " + Reader::format(closest) + " m of the own position during the run; " +
+                           "the range must stay >= " + Reader::format(kMinTrackRangeM) + " m");
+    }
+  }
+  for (std::size_t i = 0; i < schedule.size(); ++i) {
+    if (schedule[i].slew_rate_rad_s && schedule[i].tick >= t.start_tick) {
+      guidance.fail_at(join_key(at_index(guidance.path_of("schedule"), i), "slew_rate_rad_s"),
+                    "the tracker commands the slew from guidance.track.start_s = " + Reader::format(t.start_s) +
+                        " s on; a slew command at " + Reader::format(schedule[i].t_s) + " s would be overridden");
+    }
+  }
+  return t;
+}
+
 void record_values(const json& j, const std::string& path, std::map<std::string, std::string>& out) {
   if (j.is_object()) {
     for (const auto& item : j.items()) record_values(item.value(), join_key(path, item.key()), out);
@@ -593,7 +660,9 @@ Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& f
   parse_component(top.object("component", field_keys(s.component, nullptr)), s.run, s.component);
   s.body = parse_body(
       top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force"}), s);
-  s.guidance = parse_guidance(top.object("guidance", {"schedule"}), s.run, s.file);
+  const Reader guidance = top.object("guidance", {"schedule", "track"});
+  s.guidance = parse_guidance(guidance, s.run, s.file);
+  if (guidance.has("track")) s.track = parse_track(guidance, s.run, s.guidance);
   s.document = std::make_shared<const json>(doc);
   return s;
 }

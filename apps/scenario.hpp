@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "body_motion.hpp"
+#include "los_tracking.hpp"
 #include "gyro/component_types.hpp"
 #include "gyro/simulated_gyro.hpp"
 
@@ -90,6 +91,7 @@ struct Scenario {
   bool body_rate_pitch_yaw_only{false};  // body.rate_rad_s written as (q, r)
   bool body_accel_lateral_normal{false};  // body.accel written (lateral y, normal z)
   std::vector<GuidanceEvent> guidance;      // sorted by time
+  std::optional<TrackSpec> track;           // guidance.track: LOS tracking from track.start_s on
   // The file as written (for messages about a value the component or the stub refused, and
   // the float run's range check; written_values() lists it by JSON path, when asked).
   std::shared_ptr<const nlohmann::json> document;

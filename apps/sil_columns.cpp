@@ -5,9 +5,17 @@
 
 namespace gyro::sil {
 
-ColumnRecorder::ColumnRecorder() : row_(csv_columns().size()), columns_(row_.size()) {
-  for (std::size_t i = 0; i < columns_.size(); ++i) columns_[i].name = csv_columns()[i];
+ColumnRecorder::ColumnRecorder() { set_columns(false); }
+
+void ColumnRecorder::set_columns(bool tracking) {
+  const std::span<const std::string_view> names = csv_columns(tracking);
+  row_.assign(names.size(), CellValue{});
+  columns_.assign(names.size(), SilColumn{});
+  for (std::size_t i = 0; i < columns_.size(); ++i) columns_[i].name = names[i];
+  rows_ = 0;
 }
+
+void ColumnRecorder::on_start(const Scenario& s) { set_columns(s.track.has_value()); }
 
 void ColumnRecorder::on_tick(const TickRecord& r) {
   row_cells(r, row_);
@@ -51,7 +59,7 @@ std::string output_bound_refusal(const Scenario& s, std::uint64_t max_bytes, std
   if (bound <= max_bytes) return "";
   const std::string o(option);
   return o + ": the run's output could take up to " + std::to_string(bound) + " bytes (" +
-         std::to_string(s.run.ticks + 1) + " rows of " + std::to_string(csv_row_bytes_bound(s.run.ticks)) +
+         std::to_string(s.run.ticks + 1) + " rows of " + std::to_string(csv_row_bytes_bound(s.run.ticks, s.track.has_value())) +
          " bytes), more than the limit of " + std::to_string(max_bytes) + " (raise it with " + o +
          "=..., or run fewer ticks)";
 }

@@ -26,15 +26,17 @@ struct SilColumn {
   std::vector<const char*> names;  // static strings
 };
 
-// Keeps every standard column of every tick.
+// Keeps every standard column of every tick (the tracking ones too, when the run tracks).
 class ColumnRecorder : public TickObserver {
  public:
   ColumnRecorder();
+  void on_start(const Scenario& s) override;
   void on_tick(const TickRecord& r) override;
   [[nodiscard]] const std::vector<SilColumn>& columns() const noexcept { return columns_; }
   [[nodiscard]] std::uint64_t rows() const noexcept { return rows_; }
 
  private:
+  void set_columns(bool tracking);
   std::vector<CellValue> row_;
   std::vector<SilColumn> columns_;
   std::uint64_t rows_{0};

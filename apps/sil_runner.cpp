@@ -17,6 +17,7 @@
 #include "gyro/sil_loop.hpp"
 #include "gyro/sil_contract.hpp"
 #include "gyro/simulated_gyro.hpp"
+#include "los_tracking.hpp"
 #include "pil_flight.hpp"
 #include "scenario_limits.hpp"
 
@@ -86,25 +87,36 @@ void for_each_column(const TickRecord& r, F&& f) {
   f(Column{"truth_flags", Kind::kTruthFlags}, u(r.truth_flags));
   f(Column{"active_faults", Kind::kFaultBits}, u(r.active_faults));
   f(Column{"step_status", Kind::kStatus}, static_cast<std::uint64_t>(r.step_status));
+  if (r.tracking) {
+    f(Column{"pointing_error_true", Kind::kReal}, r.pointing_error_true_rad);
+    f(Column{"los_rate_error", Kind::kReal}, r.los_rate_error_rad_s);
+  }
 }
 
-// The columns, once (sil_app_test checks the required ones lead, in order).
-const std::vector<Column>& column_table() {
-  static const std::vector<Column> table = [] {
-    std::vector<Column> t;
-    for_each_column(TickRecord{}, [&](const Column& c, const auto&) { t.push_back(c); });
-    return t;
-  }();
-  return table;
+// The columns of a run without and with tracking, once (sil_app_test checks the required ones
+// lead, in order).
+std::vector<Column> make_column_table(bool tracking) {
+  TickRecord r;
+  r.tracking = tracking;
+  std::vector<Column> t;
+  for_each_column(r, [&](const Column& c, const auto&) { t.push_back(c); });
+  return t;
 }
 
-const std::vector<std::string_view>& columns() {
-  static const std::vector<std::string_view> names = [] {
-    std::vector<std::string_view> n;
-    for (const Column& c : column_table()) n.push_back(c.name);
-    return n;
-  }();
-  return names;
+const std::vector<Column>& column_table(bool tracking) {
+  static const std::vector<Column> plain = make_column_table(false), tracked = make_column_table(true);
+  return tracking ? tracked : plain;
+}
+
+std::vector<std::string_view> make_names(bool tracking) {
+  std::vector<std::string_view> n;
+  for (const Column& c : column_table(tracking)) n.push_back(c.name);
+  return n;
+}
+
+const std::vector<std::string_view>& columns(bool tracking) {
+  static const std::vector<std::string_view> plain = make_names(false), tracked = make_names(true);
+  return tracking ? tracked : plain;
 }
 
 std::uint64_t nonfinite_count(const TickRecord& r) {
@@ -279,13 +291,25 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
   Status last_step = Status::kOk;  // held over the ticks a processor in the loop skipped
 
   observer.set_extra_columns(comp.extra_columns(), [&comp](CsvWriter& w) { comp.write_extras(w); });
-  observer.on_start();
+  observer.on_start(s);
   TickRecord rec;
+  rec.tracking = s.track.has_value();
+  const Eigen::Vector2d rate_limits(s.component.max_pitch_rate_rad_s, s.component.max_yaw_rate_rad_s);
+  // The body's attitude at the tick of the component's last estimate (a tracker sees the
+  // estimate published last tick).
+  Eigen::Matrix3d R_at_estimate = body.R_earth_to_body();
   for (std::uint64_t k = 0; k <= s.run.ticks; ++k) {
     if (k > 0) body.advance();
     GuidanceCommand<T> command;
     command.request = guidance.at(k);
-    command.slew_rate_cmd_rad_s = guidance.slew().template cast<T>();
+    Eigen::Vector2d slew = guidance.slew();
+    if (s.track && k >= s.track->start_tick) {
+      const double t_estimate = static_cast<double>(k == 0 ? 0 : k - 1) * s.run.tick_s;
+      const Eigen::Vector2d estimate = comp.telemetry().gimbal_predicted_rad.template cast<double>();
+      slew = track_command(line_of_sight_at(s.track->los, t_estimate), spin_axis_earth(estimate, R_at_estimate),
+                           body.R_earth_to_body(), s.track->gain_1_s, rate_limits);
+    }
+    command.slew_rate_cmd_rad_s = slew.template cast<T>();
     command.nav_valid = guidance.nav_valid();
     const SilStatus<std::optional<Status>> ran = loop.tick(k, sample(), command);
     if (ran.stub != Status::kOk) {
@@ -323,7 +347,7 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     // What guidance and the body sent, in double (the component received them in T). Read
     // back from the input in a float run, GCC 12.2's SLP vectoriser at -O2 drops the float
     // rounding.
-    rec.slew_cmd_rad_s = guidance.slew();
+    rec.slew_cmd_rad_s = slew;
     rec.torque_cmd = tm.torque_cmd.template cast<double>();
     rec.nutation_est_rad = tm.nutation_amplitude_rad.template cast<double>();
     rec.nutation_true_rad = truth_nutation.template cast<double>();
@@ -336,6 +360,14 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
     rec.truth_flags = truth_flags | (rec.at_gimbal_stop ? 4u : 0u);
     rec.active_faults = stub.active_faults();
     rec.step_status = step;
+    if (s.track) {
+      const LineOfSight los = line_of_sight_at(s.track->los, rec.t_s);
+      rec.pointing_error_true_rad = angle_between(spin_axis_earth(rec.gimbal_true_rad, body.R_earth_to_body()), los.direction);
+      rec.los_rate_error_rad_s = (spin_axis_rate_body(rec.gimbal_predicted_rad, rec.rate_est_rad_s) -
+                                  spin_axis_rate_body(rec.gimbal_true_rad, rec.rate_true_rad_s))
+                                     .norm();
+    }
+    R_at_estimate = body.R_earth_to_body();
     sum.nonfinite_values += nonfinite_count(rec);
     observer.on_tick(rec);
     ++sum.rows;
@@ -352,10 +384,10 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
 
 }  // namespace
 
-std::span<const std::string_view> csv_columns() noexcept { return columns(); }
+std::span<const std::string_view> csv_columns(bool tracking) noexcept { return columns(tracking); }
 
 void row_cells(const TickRecord& r, std::span<CellValue> out) {
-  if (out.size() != columns().size()) throw std::invalid_argument("row_cells: one cell per CSV column");
+  if (out.size() != columns(r.tracking).size()) throw std::invalid_argument("row_cells: one cell per CSV column");
   std::size_t i = 0;
   for_each_column(r, [&](const Column&, const auto& v) { out[i++] = CellValue(v); });
 }
@@ -396,23 +428,24 @@ std::uint64_t max_chars(Kind k, std::uint64_t ticks) {
 
 }  // namespace
 
-std::uint64_t csv_row_bytes_bound(std::uint64_t ticks) {
-  std::uint64_t n = column_table().size();  // the commas and the newline
-  for (const Column& c : column_table()) n += max_chars(c.kind, ticks);
+std::uint64_t csv_row_bytes_bound(std::uint64_t ticks, bool tracking) {
+  std::uint64_t n = column_table(tracking).size();  // the commas and the newline
+  for (const Column& c : column_table(tracking)) n += max_chars(c.kind, ticks);
   return n;
 }
 
 std::uint64_t csv_size_bound(const Scenario& s) {
-  std::uint64_t header = column_table().size();
-  for (const Column& c : column_table()) header += c.name.size();
+  const bool tracking = s.track.has_value();
+  std::uint64_t header = column_table(tracking).size();
+  for (const Column& c : column_table(tracking)) header += c.name.size();
   const std::uint64_t rows = s.run.ticks + 1;
-  const std::uint64_t row = csv_row_bytes_bound(s.run.ticks);
+  const std::uint64_t row = csv_row_bytes_bound(s.run.ticks, tracking);
   if (rows > (std::numeric_limits<std::uint64_t>::max() - header) / row) return std::numeric_limits<std::uint64_t>::max();
   return header + rows * row;
 }
 
-int csv_column(std::string_view name) noexcept {
-  const std::vector<std::string_view>& c = columns();
+int csv_column(std::string_view name, bool tracking) noexcept {
+  const std::vector<std::string_view>& c = columns(tracking);
   for (std::size_t i = 0; i < c.size(); ++i) {
     if (c[i] == name) return static_cast<int>(i) + 1;
   }
@@ -424,8 +457,9 @@ void CsvObserver::set_extra_columns(std::span<const std::string_view> names, std
   write_extras_ = std::move(write);
 }
 
-void CsvObserver::on_start() {
-  std::vector<std::string_view> names(csv_columns().begin(), csv_columns().end());
+void CsvObserver::on_start(const Scenario& s) {
+  const std::span<const std::string_view> standard = csv_columns(s.track.has_value());
+  std::vector<std::string_view> names(standard.begin(), standard.end());
   names.insert(names.end(), extra_names_.begin(), extra_names_.end());
   csv_.header(names);
 }

@@ -4,7 +4,8 @@
 // Tick 0: the stub powers up aligned with the body (start), the component is activated
 // (caged) and steps once on the power-up conversion. Then for k = 1 .. run.ticks:
 //   body motion to tick k -> stub.advance(k, R_earth_to_body, accel)
-//   -> guidance for tick k (schedule) -> component.step(k, guidance) -> CSV row
+//   -> guidance for tick k (schedule; from guidance.track.start_s the tracker's slew command,
+//      los_tracking.hpp) -> component.step(k, guidance) -> CSV row
 // (a tick of gyro/sil_loop.hpp, the loop every SIL user runs).
 // The CSV has one row per tick, run.ticks + 1 rows after the header.
 #pragma once
@@ -61,6 +62,10 @@ struct TickRecord {
   bool at_gimbal_stop{false};
   std::uint32_t active_faults{0};               // the stub's, bit (1 << FaultKind)
   Status step_status{Status::kOk};
+  // A run that tracks a line of sight (guidance.track) has two more columns, from tick 0 on.
+  bool tracking{false};
+  double pointing_error_true_rad{0};  // true spin axis (the stub's) to the LOS
+  double los_rate_error_rad_s{0};     // |estimated - true spin-axis inertial rate|
 };
 
 // Receives every tick of a run, tick 0 first.
@@ -72,8 +77,8 @@ class TickObserver {
   // observer that writes the CSV appends them, others ignore them.
   virtual void set_extra_columns(std::span<const std::string_view> /*names*/,
                                  std::function<void(CsvWriter&)> /*write*/) {}
-  // Once, after both sides were configured and before tick 0.
-  virtual void on_start() {}
+  // Once, after both sides were configured and before tick 0, with the scenario run.
+  virtual void on_start(const Scenario& /*s*/) {}
   virtual void on_tick(const TickRecord& r) = 0;
 };
 
@@ -84,8 +89,8 @@ class FanOutObserver final : public TickObserver {
   void set_extra_columns(std::span<const std::string_view> names, std::function<void(CsvWriter&)> write) override {
     for (TickObserver* o : to_) o->set_extra_columns(names, write);
   }
-  void on_start() override {
-    for (TickObserver* o : to_) o->on_start();
+  void on_start(const Scenario& s) override {
+    for (TickObserver* o : to_) o->on_start(s);
   }
   void on_tick(const TickRecord& r) override {
     for (TickObserver* o : to_) o->on_tick(r);
@@ -95,20 +100,21 @@ class FanOutObserver final : public TickObserver {
   std::vector<TickObserver*> to_;
 };
 
-// Every column written (the required ones first); see docs/scenarios.md for their meaning.
-[[nodiscard]] std::span<const std::string_view> csv_columns() noexcept;
-// A row's cells as values, in csv_columns() order (the standard columns only): a number, an
+// Every column written (the required ones first); see docs/scenarios.md for their meaning. A run
+// that tracks a line of sight (Scenario::track) has the tracking columns after the others.
+[[nodiscard]] std::span<const std::string_view> csv_columns(bool tracking = false) noexcept;
+// A row's cells as values, in csv_columns(r.tracking) order (the standard columns only): a number, an
 // integer (tick, flag words, status) or a name (mode, request). What the CSV writes, before
 // formatting; the Python module's time histories are made from it.
 using CellValue = std::variant<double, std::uint64_t, const char*>;
 void row_cells(const TickRecord& r, std::span<CellValue> out);
 // 1-based column number of `name` (for gnuplot); 0 if there is no such column.
-[[nodiscard]] int csv_column(std::string_view name) noexcept;
+[[nodiscard]] int csv_column(std::string_view name, bool tracking = false) noexcept;
 
 // Upper bounds of a row's length (newline included) in a run of `ticks` ticks, and of the
 // whole CSV of a scenario (header and run.ticks + 1 rows): each column at its widest (a
 // number as "-1.234567890e-308", the flag words at every bit set, the longest name).
-[[nodiscard]] std::uint64_t csv_row_bytes_bound(std::uint64_t ticks);
+[[nodiscard]] std::uint64_t csv_row_bytes_bound(std::uint64_t ticks, bool tracking = false);
 [[nodiscard]] std::uint64_t csv_size_bound(const Scenario& s);
 
 // The gyro_sil CSV as an observer: the header at the start, one row per tick. Throws
@@ -118,7 +124,7 @@ class CsvObserver final : public TickObserver {
   explicit CsvObserver(CsvWriter& csv, std::uint64_t max_bytes = std::numeric_limits<std::uint64_t>::max()) noexcept
       : csv_(csv), max_bytes_(max_bytes) {}
   void set_extra_columns(std::span<const std::string_view> names, std::function<void(CsvWriter&)> write) override;
-  void on_start() override;
+  void on_start(const Scenario& s) override;
   void on_tick(const TickRecord& r) override;
 
  private:

@@ -1,6 +1,7 @@
-# Runs gyro_campaign as a user would (ctest: campaign_app_parallel, _rerun, _refusals).
+# Runs gyro_campaign as a user would (ctest: campaign_app_parallel, _rerun, _refusals,
+# _tracking).
 #   cmake -DEXE=<gyro_campaign> -DSIL=<gyro_sil> -DSOURCE=<repo> -DWORK=<scratch dir>
-#         -DMODE=parallel|rerun|refusals [-DMPIEXEC=<mpiexec>] -P campaign_app_test.cmake
+#         -DMODE=parallel|rerun|refusals|tracking [-DMPIEXEC=<mpiexec>] -P campaign_app_test.cmake
 #
 # parallel: the small campaign (tests/data/campaigns/small.json: every distribution, float
 #   and double runs, refused runs, random faults) with 1 and 2 threads, as 3 shards merged,
@@ -15,6 +16,7 @@
 #   read-only files in the output directory, a directory in use
 #   (tests/campaign_lock_signals.sh: the lock under SIGINT, SIGTERM and SIGKILL), control
 #   characters in messages.
+# tracking: the shipped campaigns/track_crossing.json, its first 100 runs.
 cmake_minimum_required(VERSION 3.25)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -348,6 +350,23 @@ elseif(MODE STREQUAL "refusals")
     endif()
   endforeach()
 
+elseif(MODE STREQUAL "tracking")
+  # The shipped tracking campaign's first 100 runs (about 1 s): every run tracks, and the
+  # summary gives the pointing and LOS-rate errors' percentiles (docs/campaigns.md has the
+  # whole campaign's figures).
+  run_ok("${EXE}" run "${SOURCE}/campaigns/track_crossing.json" --runs 100 -o "${WORK}/track" -j 2 --no-plots -q)
+  file(STRINGS "${WORK}/track/runs.csv" rows)
+  list(LENGTH rows n)
+  if(NOT n EQUAL 101)
+    message(FATAL_ERROR "track_crossing --runs 100: ${n} lines in runs.csv, expected 101")
+  endif()
+  file(READ "${WORK}/track/summary.md" md)
+  foreach(metric IN ITEMS max_track_pointing_error_rad max_los_rate_error_rad_s)
+    if(NOT md MATCHES "\\| ${metric} \\| 100 \\| [0-9.e-]+ \\|")
+      message(FATAL_ERROR "the summary has no figures of ${metric} over the 100 runs:\n${md}")
+    endif()
+  endforeach()
+
 else()
-  message(FATAL_ERROR "MODE must be parallel, rerun or refusals")
+  message(FATAL_ERROR "MODE must be parallel, rerun, refusals or tracking")
 endif()

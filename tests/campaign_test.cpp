@@ -231,6 +231,8 @@ TEST(CampaignFile, GivenEachMalformedCampaignThenItIsRefusedNamingFieldAndReason
        }, "fault_injection.faults[1].magnitude", "decay time constant must be > 0"},
       // metrics
       {"unknown metric", [](json& j) { j["metrics"]["latency"] = true; }, "metrics.latency", "unknown key"},
+      {"tracking metric without a track", [](json& j) { j["metrics"]["tracking"] = true; }, "metrics.tracking",
+       "the base scenario tracks no line of sight (give it a guidance.track section)"},
       {"window after the end", [](json& j) { j["metrics"]["slew_rate_error"]["to_s"] = 2.0; },
        "metrics.slew_rate_error.to_s", "after the run's end (1.5 s)"},
       {"window reversed", [](json& j) { j["metrics"]["slew_rate_error"]["from_s"] = 1.2; },

@@ -142,6 +142,7 @@ TEST(SilScenarios, GivenTheShippedScenariosThenEachEndsAsItsDescriptionSays) {
   const Expect expected[] = {
       {"report_sample.json", GyroMode::kFree, 0u, kFaultLatched | kGimbalLimit | kSmallAngleExceeded},
       {"seeker_slew.json", GyroMode::kFree, kNutationUnresolved, kFaultLatched | kGimbalLimit},
+      {"track_crossing.json", GyroMode::kFree, 0u, kFaultLatched | kGimbalLimit | kGimbalStopProtect},
       {"spin_down.json", GyroMode::kFault, kSpinLow | kFaultLatched, 0u},
       {"fault_stuck_pickoff.json", GyroMode::kFault, kResidualFault | kFaultLatched, 0u},
       {"fault_invalid_reading.json", GyroMode::kFree, kPickoffInvalid | kFaultLatched, 0u},

@@ -464,7 +464,7 @@ bool flag(const Fields& m, std::string_view key) {
   return v.get<bool>();
 }
 
-MetricSet parse_metrics(const Fields& m, double duration_s) {
+MetricSet parse_metrics(const Fields& m, double duration_s, bool tracks) {
   MetricSet out;
   out.healthy_residual = flag(m, "healthy_residual");
   out.residual_persistence = flag(m, "residual_persistence");
@@ -472,6 +472,10 @@ MetricSet parse_metrics(const Fields& m, double duration_s) {
   out.safe_mode = flag(m, "safe_mode");
   out.slew_rate_error = parse_window(m, "slew_rate_error", duration_s);
   out.pointing_error = parse_window(m, "pointing_error", duration_s);
+  out.tracking = parse_window(m, "tracking", duration_s);
+  if (out.tracking && !tracks) {
+    m.fail("tracking", "the base scenario tracks no line of sight (give it a guidance.track section)");
+  }
   out.final_mode = flag(m, "final_mode");
   out.gimbal_stop = flag(m, "gimbal_stop");
   if (m.has("flag_counters")) {
@@ -702,6 +706,10 @@ std::vector<MetricColumn> metric_columns(const MetricSet& m) {
   }
   if (m.slew_rate_error) out.push_back({"slew_rate_error_rad_s", ColumnType::kNumber});
   if (m.pointing_error) out.push_back({"max_pointing_error_rad", ColumnType::kNumber});
+  if (m.tracking) {
+    out.push_back({"max_track_pointing_error_rad", ColumnType::kNumber});
+    out.push_back({"max_los_rate_error_rad_s", ColumnType::kNumber});
+  }
   if (m.final_mode) out.push_back({"final_mode", ColumnType::kMode});
   for (int bit : m.flag_counters) {
     out.push_back({"count_" + component_flag_names()[static_cast<std::size_t>(bit)], ColumnType::kNumber});
@@ -774,8 +782,8 @@ Campaign parse_campaign(std::string_view json_text, const std::string& file, con
   if (top.has("metrics")) {
     const Fields m(c.file, top.required("metrics"), "metrics",
                    {"healthy_residual", "residual_persistence", "envelope", "safe_mode", "slew_rate_error",
-                    "pointing_error", "final_mode", "flag_counters", "gimbal_stop"});
-    c.metrics = parse_metrics(m, duration_s);
+                    "pointing_error", "tracking", "final_mode", "flag_counters", "gimbal_stop"});
+    c.metrics = parse_metrics(m, duration_s, s.track.has_value());
   }
   if (top.has("criteria")) {
     const std::vector<MetricColumn> columns = metric_columns(c.metrics);

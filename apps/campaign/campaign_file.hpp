@@ -74,6 +74,7 @@ struct MetricSet {
   bool safe_mode{false};            // safe_mode_s, detected, false_alarm, latency_s
   std::optional<Window> slew_rate_error;  // slew_rate_error_rad_s
   std::optional<Window> pointing_error;   // max_pointing_error_rad
+  std::optional<Window> tracking;         // max_track_pointing_error_rad, max_los_rate_error_rad_s
   bool final_mode{false};           // final_mode
   std::vector<int> flag_counters;   // count_<flag>: component flag bit numbers
   bool gimbal_stop{false};          // time_at_stop_s

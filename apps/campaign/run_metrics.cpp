@@ -26,6 +26,7 @@ MetricsObserver::MetricsObserver(const sil::Scenario& s, const MetricSet& m)
     : tick_s_(s.run.tick_s),
       slew_window_(ticks_of(m.slew_rate_error, s.run.tick_s)),
       pointing_window_(ticks_of(m.pointing_error, s.run.tick_s)),
+      tracking_window_(ticks_of(m.tracking, s.run.tick_s)),
       half_limit_rad_(0.5 * s.component.residual_limit_rad) {
   for (std::size_t i = 0; i < s.fault_count; ++i) {
     const std::uint64_t start = s.gyro.faults[i].start_tick;
@@ -64,6 +65,10 @@ void MetricsObserver::on_tick(const sil::TickRecord& r) {
   }
   if (free && within(pointing_window_)) {
     raise(m_.max_pointing_error_rad, (r.gimbal_predicted_rad - r.gimbal_true_rad).cwiseAbs().maxCoeff());
+  }
+  if (free && r.tracking && within(tracking_window_)) {
+    raise(m_.max_track_pointing_error_rad, r.pointing_error_true_rad);
+    raise(m_.max_los_rate_error_rad_s, r.los_rate_error_rad_s);
   }
   if (r.at_gimbal_stop) ++stop_ticks_;
 }

@@ -20,6 +20,10 @@
 //                    mean: a slew's accuracy, not the nutation riding on it)
 //   pointing error   the largest |the component's estimate of the gimbal angles - the true
 //                    angles| (either axis) over ticks in mode free within the window
+//   tracking         in a run that tracks a line of sight (guidance.track), the largest true
+//                    pointing error (the stub's spin axis to the LOS) and the largest error of
+//                    the component's spin-axis inertial rate (its LOS-rate estimate) over the
+//                    window's ticks in mode free
 //   final mode, flag counters (the component's, at the end), the first stop contact and
 //   the time at the gimbal stop
 #pragma once
@@ -49,6 +53,8 @@ struct RunMetrics {
   std::optional<double> latency_s;
   std::optional<double> slew_rate_error_rad_s;
   std::optional<double> max_pointing_error_rad;
+  std::optional<double> max_track_pointing_error_rad;
+  std::optional<double> max_los_rate_error_rad_s;
   GyroMode final_mode{GyroMode::kIdle};
   std::array<std::uint32_t, kComponentFlagCount> counters{};
   std::optional<double> stop_contact_s;  // the first tick on the stop
@@ -75,7 +81,7 @@ class MetricsObserver final : public sil::TickObserver {
 
   double tick_s_;
   std::optional<std::uint64_t> fault_tick_;
-  std::optional<TickWindow> slew_window_, pointing_window_;
+  std::optional<TickWindow> slew_window_, pointing_window_, tracking_window_;
   std::optional<std::uint64_t> safe_tick_;
   std::optional<std::uint64_t> stop_tick_;
   Eigen::Vector2d slew_error_sum_{Eigen::Vector2d::Zero()};

@@ -47,6 +47,10 @@ std::vector<std::string> metric_cells(const Campaign& c, const RunResult& r) {
   }
   if (ms.slew_rate_error) out.push_back(m ? optional_cell(m->slew_rate_error_rad_s) : "");
   if (ms.pointing_error) out.push_back(m ? optional_cell(m->max_pointing_error_rad) : "");
+  if (ms.tracking) {
+    out.push_back(m ? optional_cell(m->max_track_pointing_error_rad) : "");
+    out.push_back(m ? optional_cell(m->max_los_rate_error_rad_s) : "");
+  }
   if (ms.final_mode) out.push_back(m ? gyro::enum_name_or(m->final_mode, "?") : "");
   for (int bit : ms.flag_counters) {
     out.push_back(m ? std::to_string(m->counters[static_cast<std::size_t>(bit)]) : "");

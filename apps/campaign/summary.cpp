@@ -50,6 +50,7 @@ std::vector<double> values(const RunTable& t, std::size_t col, Pred&& keep) {
 struct Cols {
   std::size_t run, seed, status, pass, failed, reason;
   std::optional<std::size_t> fault_kind, fault_start, safe_mode, cause, detected, latency, stop_contact, final_mode;
+  std::optional<std::size_t> stop_protect;  // count_gimbal_stop_protect, when recorded
 };
 
 Cols columns_of(const RunTable& t) {
@@ -57,7 +58,7 @@ Cols columns_of(const RunTable& t) {
          *t.column("pass"),         *t.column("failed"),         *t.column("reason"),
          t.column("fault_kind"),    t.column("fault_start_s"),   t.column("safe_mode_s"),
          t.column("safe_mode_cause"), t.column("detected"),      t.column("latency_s"),
-         t.column("stop_contact_s"), t.column("final_mode")};
+         t.column("stop_contact_s"), t.column("final_mode"), t.column("count_gimbal_stop_protect")};
   return c;
 }
 
@@ -331,6 +332,13 @@ Cause likely_cause(const RunTable& t, std::size_t i, const Cols& k) {
   } else if (fault) {
     if (out.category.empty()) out.category = "not detected";
     add("fault at " + num(*fault) + " s not detected");
+  }
+  // Neither stop nor safe mode nor fault: the stop protection holding the gimbal off its stop
+  // (a slew or a track pulled back) is the likeliest, when the campaign counts it.
+  const std::optional<double> protect = cell_number(cell_of(row, k.stop_protect));
+  if (out.category.empty() && protect && *protect > 0) {
+    out.category = "stop protection";
+    add("stop protection for " + num(*protect) + " ticks");
   }
   if (out.category.empty()) out.category = "other";
   if (k.final_mode && !safe) add("ended " + std::string(row[*k.final_mode]));

@@ -154,12 +154,14 @@ void bind_sil_run(py::module_& m) {
   m.attr("DEFAULT_MAX_OUTPUT_BYTES") = sil::kDefaultMaxOutputBytes;
   m.def(
       "sil_columns",
-      [] {
+      [](bool tracking) {
         std::vector<std::string> n;
-        for (const auto c : sil::csv_columns()) n.emplace_back(c);
+        for (const auto c : sil::csv_columns(tracking)) n.emplace_back(c);
         return n;
       },
-      "The names of gyro_sil's CSV columns, in order.");
+      py::arg("tracking") = false,
+      "The names of gyro_sil's CSV columns, in order (tracking: of a run with guidance.track, "
+      "which has pointing_error_true and los_rate_error last).");
   m.def(
       "component_flag_names",
       [] {

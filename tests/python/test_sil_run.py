@@ -136,3 +136,18 @@ def test_given_the_same_run_then_gyro_sil_refuses_it_at_the_same_bound(source_di
     bound = str(e.value).split("could take up to ")[1].split(" bytes")[0]
     assert f"could take up to {bound} bytes" in r.stderr and "limit of 1073741824" in r.stderr, r.stderr
     assert not (tmp_path / "out.csv").exists()
+
+
+def test_given_a_tracking_scenario_when_run_then_it_has_the_tracking_columns_last(source_dir, gyro_sil, tmp_path):
+    path = source_dir / "scenarios" / "track_crossing.json"
+    header, rows = gyro_sil_csv(gyro_sil, path, tmp_path)
+    run = gyro.run_sil(str(path))
+    assert list(run.keys()) == header == gyro.sil_columns(tracking=True)
+    assert header[-2:] == ["pointing_error_true", "los_rate_error"]
+    assert gyro.sil_columns(tracking=True)[:-2] == gyro.sil_columns()
+    for j, name in enumerate(header[-2:], start=len(header) - 2):
+        assert [cell_text(v) for v in run[name].tolist()] == [r[j] for r in rows], name
+    # Acquired by 0.8 s: the true spin axis within 0.3 mrad of the line of sight from then on.
+    t = run["t"]
+    assert run["pointing_error_true"][t < 0.3].min() > 0.19
+    assert run["pointing_error_true"][t >= 0.8].max() < 3e-4

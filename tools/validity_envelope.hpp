@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "gyro/gimbal_geometry.hpp"
 #include "gyro/gimbal_plant.hpp"
@@ -44,6 +45,17 @@ struct Case {
   double roll_rad_s{};  // p
   double scan_rad_s{};  // s: spin-axis speed round body x at the cone (0 when c = 0)
 };
+
+// A figure in a test's name: "0.5" -> "0p5", no trailing zeros.
+inline std::string name_number(double v) {
+  std::string s = std::to_string(v);
+  s.erase(s.find_last_not_of('0') + 1);
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  for (char& ch : s) {
+    if (ch == '.') ch = 'p';
+  }
+  return s;
+}
 
 // The body turning at constant rates from the identity attitude: a rotation about a fixed
 // axis, exact at any time.
@@ -365,6 +377,10 @@ inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindow
 // the change to the last tick the error is beyond 1 %, within kAfterChangeSeconds.
 
 enum class CommandShape { kStep, kRamp, kChirp };
+
+inline const char* shape_name(CommandShape s) {
+  return s == CommandShape::kStep ? "step" : s == CommandShape::kRamp ? "ramp" : "chirp";
+}
 
 inline constexpr double kChangeAfterSeconds = kSettleSeconds;
 inline constexpr double kRampSeconds = 0.01;

@@ -38,7 +38,7 @@ int run(gyro_bench::TickCase which, std::uint64_t ticks) {
       gyro_bench::run_tick_case(which, ticks + gyro_bench::kTickCaseSettleTicks, stub, component, meter);
   if (r.error != 0) return r.error;
   std::printf("%llu ticks counted, mode %s, %llu calls not kOk\n", static_cast<unsigned long long>(ticks),
-              gyro::to_string(r.mode), static_cast<unsigned long long>(r.not_ok));
+              gyro::enum_name_or(r.mode, "unknown"), static_cast<unsigned long long>(r.not_ok));
   return 0;
 }
 

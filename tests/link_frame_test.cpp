@@ -239,6 +239,7 @@ TEST(LinkFrame, GivenAMessageIdAtRunTimeThenTheTypeByteNamesTheRealFormat) {
   EXPECT_EQ(frame_type<float>(id), 0x02u);  // bit 7 of the id is not the id's
   EXPECT_EQ(frame_type<double>(id), 0x82u);
   EXPECT_EQ(real_bytes(frame_type<double>(id)), 8u);
+  EXPECT_EQ(real_bytes(frame_type<float>(id)), 4u);
   EXPECT_EQ(message_id(frame_type<double>(id)), 0x02u);
 }
 
@@ -322,8 +323,15 @@ TEST(LinkMessages, GivenAnInvalidReadingThenItsFlagsRoundTrip) {
   EXPECT_EQ(out.sequence, r.sequence);
 }
 
-TEST(LinkMessages, GivenTheRightTypeWithTheWrongLengthThenRefused) {
+TEST(LinkMessages, GivenTheOtherMessageOrTheWrongLengthThenRefused) {
   GYRO_VERIFIES("LINK-5");
+  PickoffReading<float> untouched;
+  untouched.sequence = 7;
+  EXPECT_FALSE(decode_pickoff(encode_torque(Eigen::Vector2f(1.0f, 2.0f), 1), untouched));
+  EXPECT_EQ(untouched.sequence, 7u);
+  Eigen::Vector2f kept(5.0f, 6.0f);
+  EXPECT_FALSE(decode_torque(encode_pickoff(sample_reading<float>(), 1), kept));
+  EXPECT_EQ(kept, Eigen::Vector2f(5.0f, 6.0f));
   GyroLinkFrame<float> p = encode_pickoff(sample_reading<float>(), 1);
   p.length = static_cast<std::uint8_t>(p.length - 1);
   PickoffReading<float> out;

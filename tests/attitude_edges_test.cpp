@@ -184,6 +184,12 @@ TEST(GimbalFrameMoved, GivenAPitchChangeAndARollThenTheTorqueIsTheMovedFramesToT
       for (const double roll : {0.5, -3.0, 40.0}) {
         EXPECT_NEAR(rotor_torque_on_gyro_axes_moved(start, torquer, 0.0, roll).norm(), size, 0.01 * size) << roll;
       }
+      // A pitch move as far beyond (the roll within the step's): taken as half a radian.
+      for (const double dth : {-3.0, 40.0}) {
+        EXPECT_EQ(rotor_torque_on_gyro_axes_moved(start, torquer, dth, 0.0),
+                  rotor_torque_on_gyro_axes_moved(start, torquer, std::copysign(0.5, dth), 0.0))
+            << dth;
+      }
     }
   }
 }

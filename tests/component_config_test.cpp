@@ -523,6 +523,52 @@ TEST(ComponentConfig, ARefusedConfigureKeepsTheAcceptedOne) {
   EXPECT_EQ(kept.nominal_spin_hz, c.nominal_spin_hz);
 }
 
+// A rotor the bearings overdamp has no nutation: the rules that keep the caging loop off it
+// have nothing to keep it off. The gain the underdamped rotor refuses passes them.
+TEST(ComponentConfig, AnOverdampedRotorHasNoNutationRuleToBreak) {
+  GYRO_VERIFIES("CONF-4");
+  GyroComponentConfig<double> c = Seeker::component();
+  c.cage_gain_1_s = 1000;  // above a quarter of the seeker's nutation frequency
+  ASSERT_NE(all_of(c).find("cage_gain_1_s"), nullptr);
+  // Overdamped where f^2 (1/J1 - 1/J2)^2 > 4 H^2 / (J1 J2): with J2 = 2 J1, f > 2.9 H (J1 = J2
+  // nutates at H / J whatever the friction).
+  c.yaw_inertia = 2 * c.pitch_inertia;
+  c.friction = 1e12;  // the largest the field takes
+  const ConfigCheckList<32> all = all_of(c);
+  EXPECT_EQ(all.size(), all.total());
+  for (const ConfigCheck& r : all) {
+    const std::string why = message(r);
+    EXPECT_EQ(why.find("nutation frequency"), std::string::npos) << why;
+    EXPECT_EQ(why.find("nutation damping"), std::string::npos) << why;
+  }
+}
+
+// Every field within its own range, the float rotor's exact step may still not be
+// representable: the step check, last, refuses it.
+TEST(ComponentConfig, AFloatRotorWhoseStepOverflowsIsRefusedLast) {
+  GYRO_VERIFIES("CONF-3");
+  GyroComponentConfig<float> c = SeekerExample<float>::component();
+  c.pitch_inertia = 2e-12F;  // as a double above the field's 1e-12
+  c.yaw_inertia = 2e-12F;
+  c.spin_inertia = 1e12F;
+  c.nominal_spin_hz = 1e5F;  // H^2 / (J1 J2) ~ 1e59: beyond float
+  ConfigCheckList<64> all;
+  check_all(c, all);
+  ASSERT_GT(all.size(), 0U);
+  ASSERT_EQ(all.size(), all.total());
+  const ConfigCheck& last = all[all.size() - 1];
+  EXPECT_EQ(last.status, Status::kNumericalOverflow);
+  EXPECT_STREQ(last.field, "spin_inertia");
+  for (std::size_t i = 0; i + 1 < all.size(); ++i) EXPECT_NE(all[i].relation, Relation::kNone) << all[i].field;
+}
+
+TEST(ComponentFlags, ABitOutsideTheFlagsHasNoName) {
+  GYRO_VERIFIES("TLM-5");
+  EXPECT_STREQ(flag_name(0), "gimbal_limit");
+  EXPECT_STREQ(flag_name(kComponentFlagCount - 1), "request_refused");
+  EXPECT_STREQ(flag_name(-1), "");
+  EXPECT_STREQ(flag_name(kComponentFlagCount), "");
+}
 
 }  // namespace component_config_test
 }  // namespace gyro

@@ -129,5 +129,25 @@ TEST(ExactStepCheck, GivenTheShippedExampleGyrosThenBothChecksAccept) {
   EXPECT_TRUE(check(SeekerExample<float>::stub()).ok());
 }
 
+// check_exact_step itself, on each way it names the input responsible: H not representable,
+// the rate terms not (the inertia, the friction or H furthest from 1, a friction of 0 the
+// least extreme of all), and the step over the tick not.
+TEST(ExactStepCheck, EachOverflowNamesTheInputFurthestFromOne) {
+  GYRO_VERIFIES("CONF-3");
+  constexpr ExactStepFields kNames{"pitch_inertia", "yaw_inertia", "spin_inertia", "friction", "spin_hz", "tick_s"};
+  const auto named = [&](double j1, double f, double j0, double spin, double tick) {
+    const ConfigCheck r = check_exact_step(j1, 2e-4, j0, f, spin, tick, kNames);
+    EXPECT_EQ(r.status, Status::kNumericalOverflow);
+    return std::string(r.field != nullptr ? r.field : "(none)");
+  };
+  EXPECT_TRUE(check_exact_step(2e-4, 2e-4, 3e-4, 1e-4, 100.0, 1e-3, kNames).ok());
+  EXPECT_EQ(named(2e-4, 1e-4, 1e100, 1e250, 1e-3), "spin_hz");       // H = 2 pi spin J0 overflows
+  EXPECT_EQ(named(2e-4, 1e-4, 1e250, 1e100, 1e-3), "spin_inertia");
+  EXPECT_EQ(named(5e-324, 0.0, 3e-4, 100.0, 1e-3), "pitch_inertia");  // no friction: extremeness 0
+  EXPECT_EQ(named(2e-4, 1e300, 3e-4, 100.0, 1e-3), "friction");
+  EXPECT_EQ(named(2e-4, 1e-4, 3e-4, 1e160, 1e-3), "spin_hz");         // H finite, H^2 not
+  EXPECT_EQ(named(2e-4, 1e-4, 3e-4, 100.0, 1e300), "tick_s");         // the step, not the rotor
+}
+
 }  // namespace
 }  // namespace gyro

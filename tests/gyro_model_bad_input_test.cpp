@@ -266,6 +266,43 @@ TYPED_TEST(GyroBadInput, GivenBadUncageInputThenRefusedAndStateBitIdentical) {
   EXPECT_TRUE(bit_identical(before, observe(g)));
 }
 
+TYPED_TEST(GyroBadInput, GivenTorquerAxesOutsideTheirEnumThenRefusedByName) {
+  GYRO_VERIFIES("MODEL-6");
+  using T = TypeParam;
+  GyroModelConfig<T> c = test_config<T>();
+  c.torquer_axes = static_cast<TorquerAxes>(2);
+  GyroModel<T> g;
+  const ConfigCheck r = g.configure(c);
+  EXPECT_EQ(r.status, Status::kOutOfRange);
+  EXPECT_STREQ(r.field, "torquer_axes");
+  c.torquer_axes = TorquerAxes::kGimbal;
+  EXPECT_TRUE(g.configure(c).ok());
+}
+
+TYPED_TEST(GyroBadInput, GivenBadUncageOnGimbalInputThenRefused) {
+  GYRO_VERIFIES("MODEL-6");
+  using T = TypeParam;
+  GyroModel<T> g;
+  const Matrix3<T> body = some_body_attitude<T>();
+  EXPECT_EQ(g.uncage_on_gimbal(body, Vector3<T>::Zero(), Vector2<T>::Zero()), Status::kNotConfigured);
+  ASSERT_TRUE(g.configure(test_config<T>()).ok());
+  EXPECT_EQ(g.uncage_on_gimbal(scaled<T>(T(0.999)), Vector3<T>::Zero(), Vector2<T>::Zero()), Status::kInvalidRotation);
+  EXPECT_FALSE(g.uncaged());
+  EXPECT_EQ(g.uncage_on_gimbal(body, Vector3<T>::Zero(), Vector2<T>(T(0.1), T(-0.2))), Status::kOk);
+  EXPECT_TRUE(g.uncaged());
+}
+
+// A finite spin whose angular momentum 2 pi spin J0 is not: refused as the step's input.
+TYPED_TEST(GyroBadInput, GivenASpinWhoseMomentumOverflowsThenRefusedAndStateBitIdentical) {
+  GYRO_VERIFIES("MODEL-6");
+  using T = TypeParam;
+  GyroModel<T> g = busy_model<T>();
+  const Observed<T> before = observe(g);
+  const GyroStepInput<T> in = step_input<T>(T(1e-3), std::numeric_limits<T>::max() / T(2));
+  EXPECT_EQ(g.step_torque(in, Vector2<T>::Zero()), Status::kNonFiniteInput);
+  EXPECT_TRUE(bit_identical(before, observe(g)));
+}
+
 // ---------------------------------------------------------------------------------------
 // Determinism.
 

@@ -41,6 +41,24 @@ TEST(GyroModelCorrection, ABadInputIsRefusedAndChangesNothing) {
   EXPECT_NEAR(g.gimbal_yaw_rad() - yaw0, 0.0, 2e-5);
 }
 
+// The same refusals with the attitude given as a checked rotation (the component's form), and
+// a gimbal-angle correction that is not finite.
+TEST(GyroModelCorrection, ACheckedRotationOrGimbalFormRefusesAlike) {
+  GYRO_VERIFIES("MODEL-6");
+  GyroModel<double> g;
+  ASSERT_TRUE(g.configure(ReportSample<double>::config()).ok());
+  const CheckedRotation<double> identity;
+  EXPECT_EQ(g.correct_attitude(Vector2<double>(1e-3, 0.0), identity), Status::kNotConfigured) << "caged";
+  ASSERT_EQ(g.uncage(identity.matrix(), Vector2<double>(0.1, -0.2), Vector2<double>(0.02, -0.01)), Status::kOk);
+  const Quaternion<double> q0 = g.attitude_gyro_to_earth();
+  EXPECT_EQ(g.correct_attitude(Vector2<double>(0.0, std::nan("")), identity), Status::kNonFiniteInput);
+  EXPECT_EQ(g.correct_gimbal_angles(Vector2<double>(std::nan(""), 0.0), identity.matrix()), Status::kNonFiniteInput);
+  EXPECT_TRUE(testing::same_bits(g.attitude_gyro_to_earth().coeffs(), q0.coeffs()));
+  const double pitch0 = g.gimbal_pitch_rad();
+  ASSERT_EQ(g.correct_attitude(Vector2<double>(1e-3, 0.0), identity), Status::kOk);
+  EXPECT_NEAR(g.gimbal_pitch_rad() - pitch0, 1e-3, 2e-5);
+}
+
 TEST(GyroModelCorrection, BackInsideTheConeClearsTheLimitFlag) {
   GYRO_VERIFIES("MODEL-4", "MODEL-6");
   const GyroModelConfig<double> c = ReportSample<double>::config();  // cone 0.436 rad

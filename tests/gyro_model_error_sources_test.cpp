@@ -552,5 +552,23 @@ TEST(GyroModelErrorSources, ADriftTorqueBeyondDoubleIsRefused) {
   EXPECT_TRUE(all_finite(g.rate_rad_s(), g.gimbal_pitch_rad(), g.gimbal_yaw_rad()));
 }
 
+// Without spin and friction there is no steady precession for the Coulomb friction to oppose:
+// the step takes none (no 0/0) and the rotor keeps its rate.
+TYPED_TEST(GyroErrorSources, GivenCoulombFrictionWithoutSpinOrFrictionThenNoDrift) {
+  GYRO_VERIFIES("MODEL-4");
+  using T = TypeParam;
+  GyroModelConfig<T> c = test_config<T>();  // f = 0
+  c.errors.pitch.coulomb_friction_rad_s = T(0.02);
+  c.errors.yaw.coulomb_friction_rad_s = T(0.03);
+  GyroModel<T> g;
+  ASSERT_TRUE(g.configure(c).ok());
+  ASSERT_EQ(g.uncage(Matrix3<T>::Identity(), Vector2<T>(T(0.01), T(-0.02))), Status::kOk);
+  const Vector2<T> rate0 = g.rate_rad_s();
+  ASSERT_EQ(g.step_torque(step_input<T>(T(1e-2), T(0)), Vector2<T>::Zero()), Status::kOk);
+  EXPECT_NEAR(g.rate_rad_s()(0), rate0(0), 1e-6);
+  EXPECT_NEAR(g.rate_rad_s()(1), rate0(1), 1e-6);
+  EXPECT_GT(rate0.norm(), T(0.01));
+}
+
 }  // namespace
 }  // namespace gyro

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -222,6 +223,135 @@ TEST(LinkMessages, GivenReservedStatusBitsOrANonFiniteTorqueThenDecodingRefusesA
   EXPECT_EQ(t, Eigen::Vector2f(5.0f, 6.0f));
   EXPECT_TRUE(decode_torque(encode_torque(Eigen::Vector2f(-0.5f, 0.25f), 1), t));
   EXPECT_EQ(t, Eigen::Vector2f(-0.5f, 0.25f));
+}
+
+TEST(LinkCrc, GivenARangePastTheArraysEndThenOnlyTheArraysBytesCount) {
+  GYRO_VERIFIES("LINK-2");
+  std::array<std::uint8_t, 9> bytes{};
+  std::memcpy(bytes.data(), "123456789", 9);
+  EXPECT_EQ(crc16(bytes, 0, 100), 0x29B1u);
+  EXPECT_EQ(crc16(bytes, 5, 100), crc16(bytes, 5, 4));
+}
+
+TEST(LinkFrame, GivenAMessageIdAtRunTimeThenTheTypeByteNamesTheRealFormat) {
+  GYRO_VERIFIES("LINK-1");
+  volatile std::uint8_t id = 0x82;  // not a constant: the type byte as a receiver computes it
+  EXPECT_EQ(frame_type<float>(id), 0x02u);  // bit 7 of the id is not the id's
+  EXPECT_EQ(frame_type<double>(id), 0x82u);
+  EXPECT_EQ(real_bytes(frame_type<double>(id)), 8u);
+  EXPECT_EQ(real_bytes(frame_type<float>(id)), 4u);
+  EXPECT_EQ(message_id(frame_type<double>(id)), 0x02u);
+}
+
+TEST(LinkFrame, GivenALengthBeyondThePayloadOrTheBufferThenNothingIsWritten) {
+  GYRO_VERIFIES("LINK-2");
+  Frame<4> f;
+  std::array<std::uint8_t, kFrameOverhead + 3> out{};  // room for 3 bytes of payload
+  out.fill(0xEE);
+  f.length = 5;  // one more than the frame's payload array
+  EXPECT_EQ(encode_frame(f, out), 0u);
+  f.length = 4;  // fits the frame, not the buffer: 11 bytes into 10
+  EXPECT_EQ(encode_frame(f, out), 0u);
+  EXPECT_EQ(out[0], 0xEEu);
+  f.length = 3;
+  EXPECT_EQ(encode_frame(f, out), kFrameOverhead + 3);
+  EXPECT_EQ(out[0], kSync1);
+}
+
+// A message set whose type announces more than its largest payload (a definition error) must
+// not make the decoder read past its window: the header is refused.
+struct OverlongMessages {
+  static constexpr std::size_t kMaxPayload = 4;
+  [[nodiscard]] static constexpr int payload_length(std::uint8_t type) noexcept { return type == 1 ? 6 : 4; }
+};
+
+TEST(LinkDecoder, GivenAMessageSetAnnouncingMoreThanItsMaximumThenRefusedAsAHeaderError) {
+  GYRO_VERIFIES("LINK-3", "LINK-4");
+  using Overlong = FrameDecoder<OverlongMessages>;
+  Overlong::FrameType good;
+  good.type = 2;
+  good.length = 4;
+  good.payload = {1, 2, 3, 4};
+  std::array<std::uint8_t, kFrameOverhead + 4> encoded{};
+  ASSERT_EQ(encode_frame(good, encoded), encoded.size());
+  std::vector<std::uint8_t> bytes = {0xA5, 0x5A, 1, 0, 6};  // type 1 announces 6 of at most 4
+  bytes.insert(bytes.end(), encoded.begin(), encoded.end());
+  Overlong dec;
+  std::vector<Overlong::FrameType> frames;
+  for (std::uint8_t b : bytes) {
+    ASSERT_TRUE(dec.push(b));
+    for (Overlong::FrameType f; dec.next(f);) frames.push_back(f);
+  }
+  EXPECT_EQ(dec.counters().header_errors, 1u);
+  ASSERT_EQ(frames.size(), 1u);  // the frame after it still found
+  EXPECT_EQ(frames[0].type, 2u);
+  EXPECT_EQ(frames[0].payload, good.payload);
+}
+
+TEST(LinkMessages, GivenAPayloadThatDoesNotFillItsLengthThenSealedToLengthZero) {
+  GYRO_VERIFIES("LINK-5");
+  GyroLinkFrame<float> f;  // a payload of 17 bytes
+  f.length = 8;
+  WireWriter short_writer(f.payload, 0);
+  short_writer.real(1.0F);  // 4 of 8 bytes
+  EXPECT_EQ(sealed(f, short_writer).length, 0u);
+  WireWriter overrun(f.payload, 0);
+  for (int i = 0; i < 5; ++i) overrun.real(1.0F);  // 20 bytes into 17: the last refused
+  f.length = 17;
+  EXPECT_EQ(overrun.position(), 17u);
+  EXPECT_EQ(sealed(f, overrun).length, 0u);
+  WireWriter full(f.payload, 0);
+  full.real(1.0F);
+  full.real(2.0F);
+  f.length = 8;
+  EXPECT_EQ(sealed(f, full).length, 8u);
+}
+
+TEST(LinkMessages, GivenAnInvalidReadingThenItsFlagsRoundTrip) {
+  GYRO_VERIFIES("LINK-5");
+  PickoffReading<double> r = sample_reading<double>();
+  r.valid = false;
+  r.spin_valid = false;
+  const GyroLinkFrame<double> f = encode_pickoff(r, 3);
+  EXPECT_EQ(f.payload[4], 0u);
+  PickoffReading<double> out;
+  out.valid = true;
+  out.spin_valid = true;
+  ASSERT_TRUE(decode_pickoff(f, out));
+  EXPECT_FALSE(out.valid);
+  EXPECT_FALSE(out.spin_valid);
+  EXPECT_EQ(out.sequence, r.sequence);
+}
+
+TEST(LinkMessages, GivenTheOtherMessageOrTheWrongLengthThenRefused) {
+  GYRO_VERIFIES("LINK-5");
+  PickoffReading<float> untouched;
+  untouched.sequence = 7;
+  EXPECT_FALSE(decode_pickoff(encode_torque(Eigen::Vector2f(1.0f, 2.0f), 1), untouched));
+  EXPECT_EQ(untouched.sequence, 7u);
+  Eigen::Vector2f kept(5.0f, 6.0f);
+  EXPECT_FALSE(decode_torque(encode_pickoff(sample_reading<float>(), 1), kept));
+  EXPECT_EQ(kept, Eigen::Vector2f(5.0f, 6.0f));
+  GyroLinkFrame<float> p = encode_pickoff(sample_reading<float>(), 1);
+  p.length = static_cast<std::uint8_t>(p.length - 1);
+  PickoffReading<float> out;
+  out.sequence = 42;
+  EXPECT_FALSE(decode_pickoff(p, out));
+  EXPECT_EQ(out.sequence, 42u);
+  GyroLinkFrame<float> t = encode_torque(Eigen::Vector2f(1.0f, 2.0f), 1);
+  t.length = static_cast<std::uint8_t>(t.length + 1);
+  Eigen::Vector2f torque(5.0f, 6.0f);
+  EXPECT_FALSE(decode_torque(t, torque));
+  EXPECT_EQ(torque, Eigen::Vector2f(5.0f, 6.0f));
+}
+
+TEST(LinkMessages, GivenANonFiniteSecondTorqueAxisThenRefused) {
+  GYRO_VERIFIES("LINK-5");
+  Eigen::Vector2d t(5.0, 6.0);
+  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    EXPECT_FALSE(decode_torque(encode_torque(Eigen::Vector2d(0.25, bad), 1), t)) << bad;
+  }
+  EXPECT_EQ(t, Eigen::Vector2d(5.0, 6.0));
 }
 
 }  // namespace

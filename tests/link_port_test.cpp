@@ -184,7 +184,9 @@ TEST(CmsdkUart, GivenRegisterStatesThenTheDriverReadsWritesAndCountsOverrunsAsTh
   link::CmsdkApbUartRegisters regs{};
   link::CmsdkApbUart uart(regs);
   EXPECT_FALSE(uart.enable(25000000u, 2000000u));  // divider 12.5 < 16
+  EXPECT_FALSE(uart.enable(25000000u, 0u));        // no divider at all
   EXPECT_EQ(regs.ctrl, 0u);
+  EXPECT_EQ(regs.bauddiv, 0u);
   ASSERT_TRUE(uart.enable(25000000u, 115200u));
   EXPECT_EQ(regs.bauddiv, 217u);
   EXPECT_EQ(regs.ctrl, 0x3u);
@@ -210,6 +212,8 @@ TEST(CmsdkUart, GivenRegisterStatesThenTheDriverReadsWritesAndCountsOverrunsAsTh
 
   uart.set_rx_interrupt(true);
   EXPECT_EQ(regs.ctrl, 0xBu);
+  uart.set_rx_interrupt(false);
+  EXPECT_EQ(regs.ctrl, 0x3u);  // both directions stay enabled
   uart.clear_rx_interrupt();
   EXPECT_EQ(regs.intstatus, 0x2u);
 }

@@ -120,12 +120,10 @@ template <typename T>
 [[nodiscard]] Status nutation_amplitude(const RotorParameters<T>& prm, const Vector2<T>& rate_rad_s,
                                         const Vector2<T>& torque,
                                         Vector2<T>& amplitude_rad_out) noexcept {
-  const Status st = validate(prm);
+  NutationMap<T> map;
+  const Status st = make_nutation_map(prm, map);  // validates prm
   if (st != Status::kOk) return st;
   if (!all_finite(rate_rad_s, torque)) return Status::kNonFiniteInput;
-  NutationMap<T> map;
-  const Status ms = make_nutation_map(prm, map);
-  if (ms != Status::kOk) return ms;
   const Vector2<T> amp = nutation_amplitude(map, rate_rad_s, torque);
   if (amp.maxCoeff() == std::numeric_limits<T>::max()) return Status::kNumericalOverflow;
   amplitude_rad_out = amp;

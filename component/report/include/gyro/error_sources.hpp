@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <string_view>
 
 #include "gyro/config_fields.hpp"
@@ -83,6 +84,8 @@ inline constexpr const char* kErrorSourceFieldNames[2][6] = {
 // The first error source outside its own range, named with its axis.
 template <typename T>
 [[nodiscard]] ConfigCheck check(const GyroErrorSources<T>& e) noexcept {
+  static_assert(count_fields<AxisErrorSources<T>, AnyField>() == std::size(kErrorSourceFieldNames[0]),
+                "a qualified name for each field of an axis");
   const AxisErrorSources<T>* axes[] = {&e.pitch, &e.yaw};
   for (std::size_t a = 0; a < 2; ++a) {
     ConfigCheck r = first_refusal<RealFields>(*axes[a]).check;
@@ -90,7 +93,7 @@ template <typename T>
     std::size_t i = 0;
     visit_fields(
         [&](const Field& f, const auto&) noexcept {
-          if (i < 6 && std::string_view(f.name) == r.field) r.field = kErrorSourceFieldNames[a][i];
+          if (std::string_view(f.name) == r.field) r.field = kErrorSourceFieldNames[a][i];
           ++i;
         },
         *axes[a]);

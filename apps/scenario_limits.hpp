@@ -29,4 +29,8 @@ void check_precision_range(const Scenario& s);
 // configure() accepted both configurations).
 void check_run_limits(const Scenario& s);
 
+// A body trajectory lasts at least as long as the run (checked again after the run's length
+// is overridden: gyro_sil --ticks, the Python module's ticks).
+void check_trajectory_covers_run(const Scenario& s);
+
 }  // namespace gyro::sil

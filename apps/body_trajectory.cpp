@@ -125,21 +125,53 @@ TrajectoryTable read_trajectory_csv(const std::string& path, TrajectoryAttitude 
   return parse_trajectory_csv(*text, path, form);
 }
 
+namespace {
+
+// The table's columns in the order of `names`, each named once.
+std::vector<const std::vector<double>*> ordered_columns(const TrajectoryTable& table,
+                                                        const std::vector<std::string>& names) {
+  const std::string form = names[1] == "qw" ? "quaternion" : "euler_321";
+  std::vector<const std::vector<double>*> cols(names.size(), nullptr);
+  if (table.names.empty()) {
+    if (table.columns.size() != names.size()) {
+      throw ScenarioError(table.source, "(columns)",
+                          "expected the " + std::to_string(names.size()) + " columns " + joined(names) + ", got " +
+                              std::to_string(table.columns.size()));
+    }
+    for (std::size_t c = 0; c < names.size(); ++c) cols[c] = &table.columns[c];
+    return cols;
+  }
+  for (std::size_t k = 0; k < table.names.size(); ++k) {
+    std::size_t c = 0;
+    while (c < names.size() && names[c] != table.names[k]) ++c;
+    if (c == names.size()) {
+      throw ScenarioError(table.source, table.names[k],
+                          "unknown column (attitude \"" + form + "\" takes " + joined(names) + ")");
+    }
+    cols[c] = &table.columns[k];
+  }
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    if (cols[c] == nullptr) {
+      throw ScenarioError(table.source, names[c],
+                          "missing column (attitude \"" + form + "\" takes " + joined(names) + ")");
+    }
+  }
+  return cols;
+}
+
+}  // namespace
+
 BodyTrajectory build_trajectory(const TrajectoryTable& table, const TrajectorySpec& spec) {
   const std::vector<std::string> names = trajectory_columns(spec.attitude);
   const auto refuse = [&](std::size_t row, std::size_t col, const std::string& reason) {
     throw ScenarioError(table.source, trajectory_field(table, row, names[col]), reason);
   };
-  if (table.columns.size() != names.size()) {
-    throw ScenarioError(table.source, "(columns)",
-                        "expected the " + std::to_string(names.size()) + " columns " + joined(names) + ", got " +
-                            std::to_string(table.columns.size()));
-  }
-  const std::size_t rows = table.columns[0].size();
+  const std::vector<const std::vector<double>*> cols = ordered_columns(table, names);
+  const std::size_t rows = cols[0]->size();
   for (std::size_t c = 0; c < names.size(); ++c) {
-    if (table.columns[c].size() != rows) {
+    if (cols[c]->size() != rows) {
       throw ScenarioError(table.source, names[c],
-                          "has " + std::to_string(table.columns[c].size()) + " rows, " + names[0] + " has " +
+                          "has " + std::to_string(cols[c]->size()) + " rows, " + names[0] + " has " +
                               std::to_string(rows));
     }
   }
@@ -157,7 +189,7 @@ BodyTrajectory build_trajectory(const TrajectoryTable& table, const TrajectorySp
   tr.samples.resize(rows);
   const std::size_t rate_col = spec.attitude == TrajectoryAttitude::kQuaternion ? 5 : 4;
   for (std::size_t i = 0; i < rows; ++i) {
-    const auto at = [&](std::size_t c) { return table.columns[c][i]; };
+    const auto at = [&](std::size_t c) { return (*cols[c])[i]; };
     for (std::size_t c = 0; c < names.size(); ++c) {
       if (!std::isfinite(at(c))) refuse(i, c, "must be finite, got " + format(at(c)));
     }

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -30,12 +31,14 @@ enum class TrajectoryAttitude : std::uint8_t { kQuaternion, kEuler321 };
 // The columns of a trajectory, in order, for its attitude form.
 [[nodiscard]] std::vector<std::string> trajectory_columns(TrajectoryAttitude form);
 
-// The trajectory as read: column-major values (columns[c][i]) named as trajectory_columns.
-// Row i is named "line (i + first_line)" in a file, "[i]" for arrays.
+// The trajectory as read: column-major values (columns[c][i]), named by `names` in any order
+// (empty: in the order of trajectory_columns). Row i is named "line (i + first_line)" in a
+// file, "[i]" for arrays.
 struct TrajectoryTable {
   std::string source;  // the file, or "<trajectory arrays>"
   bool from_file{true};
   std::size_t first_line{2};  // the file's line of row 0 (after the header)
+  std::vector<std::string> names;
   std::vector<std::vector<double>> columns;
 };
 

@@ -6,7 +6,8 @@
 //   the guidance inputs are cast to float).
 // - The body: it turns by at most pi per tick at its peak rates (constant plus weave); a
 //   faster body is aliased by the tick, and at absurd rates its attitude is no longer a
-//   rotation. The weave's frequency is below the tick's Nyquist rate, 0.5 / tick.
+//   rotation. The weave's frequency is below the tick's Nyquist rate, 0.5 / tick. A recorded
+//   trajectory: its largest row's rates, and it lasts as long as the run.
 // - The torque on the emulated rotor: the largest that can act (commands up to
 //   component.max_torque times the torquer scale, saturated-torquer faults, torquer
 //   cross-coupling, the error sources' drifts at the gimbal's extremes and the body's

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <charconv>
+#include <filesystem>
 #include <string_view>
 
 #include "body_motion.hpp"
@@ -119,6 +120,12 @@ TrajectoryTable parse_trajectory_csv(const std::string& text, const std::string&
 }
 
 TrajectoryTable read_trajectory_csv(const std::string& path, TrajectoryAttitude form) {
+  // A regular file only: a device or a pipe could block the open or feed bytes without end.
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st)) {
+    throw ScenarioError(path, "(file)", "not a regular file (a trajectory is read from a file on disk)");
+  }
   std::string why;
   const std::optional<std::string> text = read_bounded(path, kMaxTrajectoryBytes, "a trajectory", why);
   if (!text) throw ScenarioError(path, "(file)", why);

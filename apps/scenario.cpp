@@ -412,8 +412,14 @@ BodyProfile parse_body_trajectory(const Reader& body, const Scenario& s) {
     const std::filesystem::path f = r.text("file", "");
     const std::filesystem::path resolved = f.is_absolute() ? f : std::filesystem::path(s.file).parent_path() / f;
     spec.file = resolved.string();
-    b.trajectory = std::make_shared<const BodyTrajectory>(
-        build_trajectory(read_trajectory_csv(spec.file, spec.attitude), spec));
+    try {
+      b.trajectory = std::make_shared<const BodyTrajectory>(
+          build_trajectory(read_trajectory_csv(spec.file, spec.attitude), spec));
+    } catch (const ScenarioError& e) {
+      // Named as the scenario's field, the file's row and column in the reason.
+      const std::string where = e.field() == "(file)" ? "" : e.field() + ": ";
+      r.fail("file", e.file() + ": " + where + e.reason());
+    }
   }
   b.trajectory_spec = spec;
   return b;

@@ -89,10 +89,11 @@ void float_range(const Scenario& s) {
 // or its largest |f| on one axis (offset 1 + axis), with the field of that row's largest part.
 struct TrajectoryPeak {
   double value{0};
-  std::string field;
+  std::string field;  // body.trajectory.file for a file, "p_rad_s[12]" for arrays
+  std::string where;  // "FILE: p_rad_s (line 14): " for a file, "" for arrays
 };
 
-TrajectoryPeak trajectory_peak(const BodyTrajectory& tr, bool force, int axis) {
+TrajectoryPeak trajectory_peak(const BodyTrajectory& tr, const std::string& file_field, bool force, int axis) {
   TrajectoryPeak peak;
   std::size_t at = 0;
   for (std::size_t i = 0; i < tr.samples.size(); ++i) {
@@ -107,15 +108,16 @@ TrajectoryPeak trajectory_peak(const BodyTrajectory& tr, bool force, int axis) {
   Eigen::Index largest = axis;
   if (axis < 0) v.cwiseAbs().maxCoeff(&largest);
   const std::size_t first = tr.columns.size() - 6 + (force ? 3 : 0);
-  peak.field = "body.trajectory " + tr.source + ": " +
-               trajectory_field(tr, at, tr.columns[first + static_cast<std::size_t>(largest)]);
+  const std::string row = trajectory_field(tr, at, tr.columns[first + static_cast<std::size_t>(largest)]);
+  peak.field = tr.from_file ? file_field : row;
+  peak.where = tr.from_file ? tr.source + ": " + row + ": " : "";
   return peak;
 }
 
 // The body's specific force on `axis` (its largest over a trajectory) and its field.
 Factor body_force(const Scenario& s, int axis) {
   if (s.body.trajectory) {
-    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, true, axis);
+    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, s.body.trajectory_spec->file_field, true, axis);
     return {p.value, p.field};
   }
   return {s.body.specific_force[static_cast<std::size_t>(axis)], body_force_field(s, axis)};
@@ -154,11 +156,11 @@ void check_trajectory_body(const Scenario& s) {
     throw ScenarioError(s.file, b.trajectory_spec->file_field,
                         "missing required field (or give the trajectory's columns from Python)");
   }
-  const TrajectoryPeak rate = trajectory_peak(*b.trajectory, false, -1);
+  const TrajectoryPeak rate = trajectory_peak(*b.trajectory, b.trajectory_spec->file_field, false, -1);
   const double turn = rate.value * s.run.tick_s;
   if (!(turn <= kTwoPi / 2)) {
     throw ScenarioError(s.file, rate.field,
-                        "the body would turn by " + format(turn) + " rad in one tick at this row's rates (" +
+                        rate.where + "the body would turn by " + format(turn) + " rad in one tick at this row's rates (" +
                             format(rate.value) + " rad/s), more than pi: give a shorter tick or lower rates");
   }
   check_trajectory_covers_run(s);
@@ -301,30 +303,33 @@ void check_gimbal_envelope(const Scenario& s) {
   const GimbalPlantConfig<double>& g = s.gyro.gimbal;
   std::vector<Factor> rates;
   double peak_rate = 0;
+  std::string where;
   if (s.body.trajectory) {
-    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, false, -1);
+    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, s.body.trajectory_spec->file_field, false, -1);
     rates = {{p.value, p.field}};
     peak_rate = p.value;
+    where = p.where;
   } else {
     rates = body_rate_factors(s);
     peak_rate = peak_body_rate(rates);
   }
   if (!(peak_rate <= g.max_body_rate_rad_s)) {
     throw ScenarioError(s.file, largest_field(rates),
-                        "the body's peak rate |(p, q, r)| of " + format(peak_rate) +
+                        where + "the body's peak rate |(p, q, r)| of " + format(peak_rate) +
                             " rad/s is more than gyro.gimbal.max_body_rate_rad_s (" +
                             format(g.max_body_rate_rad_s) + ")");
   }
   std::vector<Factor> force = {body_force(s, 0), body_force(s, 1), body_force(s, 2)};
   double f = std::hypot(force[0].value, std::hypot(force[1].value, force[2].value));
   if (s.body.trajectory) {
-    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, true, -1);
+    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, s.body.trajectory_spec->file_field, true, -1);
     force = {{p.value, p.field}};
     f = p.value;
+    where = p.where;
   }
   if (!(f <= g.max_specific_force)) {
     throw ScenarioError(s.file, largest_field(force),
-                        "the body's specific force of " + format(f) + " is more than "
+                        where + "the body's specific force of " + format(f) + " is more than "
                             "gyro.gimbal.max_specific_force (" + format(g.max_specific_force) + ")");
   }
   const Term unbalance = product({{g.mass_unbalance, "gyro.gimbal.mass_unbalance"}, {f, largest_field(force)}});

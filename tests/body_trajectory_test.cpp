@@ -278,7 +278,8 @@ TEST(BodyTrajectoryScenario, RatesBeyondTheGimbalEnvelopeNameTheRow) {
   nlohmann::json doc = shipped_document();
   doc["gyro"]["gimbal"]["max_body_rate_rad_s"] = 11.0;  // the file spins at 12 rad/s
   const ScenarioError e = scenario_refusal(doc);
-  EXPECT_NE(e.field().find("trajectory_spinning.csv: p_rad_s (line "), std::string::npos) << e.field();
+  EXPECT_EQ(e.field(), "body.trajectory.file");
+  EXPECT_NE(e.reason().find("trajectory_spinning.csv: p_rad_s (line "), std::string::npos) << e.reason();
   EXPECT_NE(e.reason().find("12.0017 rad/s is more than gyro.gimbal.max_body_rate_rad_s (11)"), std::string::npos)
       << e.reason();
   // And beyond pi per tick: 40 rad/s at 0.1 s, sampled every 0.05 s.
@@ -299,10 +300,24 @@ TEST(BodyTrajectoryScenario, RatesBeyondTheGimbalEnvelopeNameTheRow) {
   } catch (const ScenarioError& x) {
     fast = x;
   }
-  EXPECT_EQ(fast.field(), "body.trajectory <trajectory arrays>: p_rad_s[0]");
+  EXPECT_EQ(fast.field(), "p_rad_s[0]");
   EXPECT_NE(fast.reason().find("turn by 4 rad in one tick at this row's rates (40 rad/s), more than pi"),
             std::string::npos)
       << fast.reason();
+}
+
+TEST(BodyTrajectoryScenario, BadFileIsNamedAsTheScenarioField) {
+  nlohmann::json doc = shipped_document();
+  doc["body"]["trajectory"]["attitude"] = "euler_321";  // the file has quaternion columns
+  ScenarioError e = scenario_refusal(doc);
+  EXPECT_EQ(e.field(), "body.trajectory.file");
+  EXPECT_NE(e.reason().find("trajectory_spinning.csv: (header): the first line must name the columns"),
+            std::string::npos)
+      << e.reason();
+  doc["body"]["trajectory"]["file"] = "/dev/zero";
+  e = scenario_refusal(doc);
+  EXPECT_EQ(e.field(), "body.trajectory.file");
+  EXPECT_NE(e.reason().find("/dev/zero: not a regular file"), std::string::npos) << e.reason();
 }
 
 TEST(BodyTrajectoryScenario, TrajectoryAndProfileKeysTogetherAreRefused) {

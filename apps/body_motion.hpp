@@ -16,6 +16,10 @@
 // is neglected). The pitch-then-yaw composition reproduces the report's driver GYMAIN
 // (ROTZ * ROTY * ROTEB, with exact matrices). The attitude is composed as a unit quaternion,
 // normalised every tick, so it stays a rotation over any number of ticks.
+//
+// Trajectory: a recorded table (body_trajectory.hpp) in place of the profile; the attitude,
+// rates and specific force at each tick are the table's interpolating curve at the tick's
+// time (no composition from tick to tick).
 #pragma once
 
 #include <Eigen/Core>
@@ -23,7 +27,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <optional>
 
+#include "body_trajectory.hpp"
 #include "gyro/attitude.hpp"
 
 namespace gyro::sil {
@@ -46,6 +53,9 @@ struct BodyProfile {
   RotationComposition composition{RotationComposition::kRotationVector};
   WeaveProfile weave{};
   std::array<double, 3> specific_force{0, 0, 0};  // body (x, y, z), units of gyro.gravity
+  // body.trajectory: the motion comes from the table instead (the fields above unused).
+  std::optional<TrajectorySpec> trajectory_spec;
+  std::shared_ptr<const BodyTrajectory> trajectory;  // loaded and checked once
 };
 
 inline constexpr double kTwoPi = 6.283185307179586476925286766559;
@@ -68,6 +78,10 @@ class BodyMotion {
         tick_s_(tick_s),
         q_body_to_earth_(Eigen::Matrix3d(euler_321_to_R_earth_to_body(profile.attitude_rad).transpose())) {
     q_body_to_earth_.normalize();
+    if (profile_.trajectory) {
+      sample_trajectory();
+      return;
+    }
     R_earth_to_body_ = q_body_to_earth_.toRotationMatrix().transpose();
   }
 
@@ -123,6 +137,10 @@ class BodyMotion {
   void advance() {
     const double t0 = time_s();
     ++tick_;
+    if (profile_.trajectory) {
+      sample_trajectory();
+      return;
+    }
     const double t1 = time_s();
     const Eigen::Matrix3d step = tick_rotation(mean_rate(t0, t1), tick_s_, profile_.composition);
     // R_new = step * R_old  <=>  q_new (body to earth) = q_old * step^T.
@@ -135,17 +153,28 @@ class BodyMotion {
   [[nodiscard]] std::uint64_t tick() const { return tick_; }
   [[nodiscard]] double time_s() const { return static_cast<double>(tick_) * tick_s_; }
   [[nodiscard]] const Eigen::Matrix3d& R_earth_to_body() const { return R_earth_to_body_; }
-  [[nodiscard]] Eigen::Vector3d rate_rad_s() const { return rate_at(time_s()); }
+  [[nodiscard]] Eigen::Vector3d rate_rad_s() const {
+    return profile_.trajectory ? point_.rate_rad_s : rate_at(time_s());
+  }
   [[nodiscard]] Eigen::Vector3d specific_force() const {
+    if (profile_.trajectory) return point_.specific_force;
     return Eigen::Vector3d(profile_.specific_force[0], profile_.specific_force[1], profile_.specific_force[2]);
   }
 
  private:
+  void sample_trajectory() {
+    point_ = trajectory_at(*profile_.trajectory, time_s(), cursor_);
+    q_body_to_earth_ = point_.q_body_to_earth;
+    R_earth_to_body_ = q_body_to_earth_.toRotationMatrix().transpose();
+  }
+
   BodyProfile profile_;
   double tick_s_;
   std::uint64_t tick_{0};
   Eigen::Quaterniond q_body_to_earth_{Eigen::Quaterniond::Identity()};
   Eigen::Matrix3d R_earth_to_body_{Eigen::Matrix3d::Identity()};
+  std::size_t cursor_{0};
+  TrajectoryPoint point_{};
 };
 
 }  // namespace gyro::sil

@@ -33,6 +33,7 @@
 #include "run_timeline.hpp"
 #include "printable.hpp"
 #include "scenario.hpp"
+#include "scenario_limits.hpp"
 #include "signal_cleanup.hpp"
 #include "sil_columns.hpp"  // kDefaultMaxOutputBytes
 #include "sil_runner.hpp"
@@ -263,6 +264,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (ticks != 0) scenario.run.ticks = ticks;
+  try {
+    check_trajectory_covers_run(scenario);
+  } catch (const ScenarioError& e) {
+    return fail(kExitRefused, std::string("bad scenario: ") + e.what());
+  }
   const std::uint64_t csv_bound = csv_size_bound(scenario);
   if (csv_bound > max_output_bytes) {
     return fail(kExitRefused, std::string("refused: ") + ScenarioError(scenario.file, scenario.run.length_field,

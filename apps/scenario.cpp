@@ -387,7 +387,47 @@ void parse_component(const Reader& r, const RunSpec& run, GyroComponentConfig<do
   read_fields(r, c, nullptr);
 }
 
+// body.trajectory: the table named by `file` (relative to the scenario's directory), or the
+// columns handed in later (attach_trajectory) when there is no file.
+BodyProfile parse_body_trajectory(const Reader& body, const Scenario& s) {
+  for (const char* key : {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force"}) {
+    if (body.has(key)) body.fail(key, "give either \"trajectory\" or the constant-rate profile, not both");
+  }
+  const Reader r = body.object("trajectory", {"file", "attitude", "tolerance_rad"});
+  BodyProfile b;
+  TrajectorySpec spec;
+  const std::string form = r.text("attitude", "quaternion");
+  if (form == "quaternion") {
+    spec.attitude = TrajectoryAttitude::kQuaternion;
+  } else if (form == "euler_321") {
+    spec.attitude = TrajectoryAttitude::kEuler321;
+  } else {
+    r.fail("attitude", "expected \"quaternion\" or \"euler_321\", got \"" + form + "\"");
+  }
+  if (r.has("tolerance_rad")) {
+    spec.tolerance_rad = r.positive("tolerance_rad");
+    if (!(spec.tolerance_rad <= 0.1)) r.fail("tolerance_rad", "must be <= 0.1, got " + Reader::format(spec.tolerance_rad));
+  }
+  spec.file_field = r.path_of("file");
+  if (r.has("file")) {
+    const std::filesystem::path f = r.text("file", "");
+    const std::filesystem::path resolved = f.is_absolute() ? f : std::filesystem::path(s.file).parent_path() / f;
+    spec.file = resolved.string();
+    try {
+      b.trajectory = std::make_shared<const BodyTrajectory>(
+          build_trajectory(read_trajectory_csv(spec.file, spec.attitude), spec));
+    } catch (const ScenarioError& e) {
+      // Named as the scenario's field, the file's row and column in the reason.
+      const std::string where = e.field() == "(file)" ? "" : e.field() + ": ";
+      r.fail("file", e.file() + ": " + where + e.reason());
+    }
+  }
+  b.trajectory_spec = spec;
+  return b;
+}
+
 BodyProfile parse_body(const Reader& r, Scenario& s) {
+  if (r.has("trajectory")) return parse_body_trajectory(r, s);
   BodyProfile b;
   b.attitude_rad = r.numbers<3>("attitude_rad", {0, 0, 0});
   const json& rate = r.required("rate_rad_s");
@@ -659,7 +699,9 @@ Scenario parse_scenario_document(const nlohmann::json& doc, const std::string& f
   parse_gyro(top.object("gyro", kGyroKeys), s.run, s);
   parse_component(top.object("component", field_keys(s.component, nullptr)), s.run, s.component);
   s.body = parse_body(
-      top.object("body", {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force"}), s);
+      top.object("body",
+                 {"attitude_rad", "rate_rad_s", "composition", "weave", "accel", "specific_force", "trajectory"}),
+      s);
   const Reader guidance = top.object("guidance", {"schedule", "track"});
   s.guidance = parse_guidance(guidance, s.run, s.file);
   if (guidance.has("track")) s.track = parse_track(guidance, s.run, s.guidance);
@@ -682,6 +724,18 @@ std::string read_scenario_text(const std::string& name) {
 Scenario read_scenario(const std::filesystem::path& path) {
   const std::string name = path.string();
   return parse_scenario(read_scenario_text(name), name);
+}
+
+void attach_trajectory(Scenario& s, const TrajectoryTable& table) {
+  if (!s.body.trajectory_spec) {
+    throw ScenarioError(s.file, "body.trajectory", "a trajectory's columns were given, but the scenario's body has "
+                                                   "no \"trajectory\" section");
+  }
+  if (s.body.trajectory) {
+    throw ScenarioError(s.file, s.body.trajectory_spec->file_field,
+                        "give either a trajectory file or the trajectory's columns, not both");
+  }
+  s.body.trajectory = std::make_shared<const BodyTrajectory>(build_trajectory(table, *s.body.trajectory_spec));
 }
 
 std::string body_rate_field(const Scenario& s, int axis) {

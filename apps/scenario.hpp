@@ -122,6 +122,11 @@ struct Scenario {
 [[nodiscard]] nlohmann::json gyro_section(const SimulatedGyroConfig<double>& c, std::size_t fault_count);
 [[nodiscard]] nlohmann::json component_section(const GyroComponentConfig<double>& c);
 
+// A body.trajectory without a file takes its table from `table` (the Python module's arrays),
+// checked as a file's. Throws ScenarioError (also when the scenario has no body.trajectory, or
+// one with a file).
+void attach_trajectory(Scenario& s, const TrajectoryTable& table);
+
 // Reads the file and parses it. A file that cannot be opened or read, a directory, or more
 // than kMaxScenarioBytes is a ScenarioError with field "(file)"; reading is bounded even for
 // /dev/zero or a pipe.

@@ -85,6 +85,44 @@ void float_range(const Scenario& s) {
 // ---------------------------------------------------------------------------------------
 // The body's motion.
 
+// A recorded trajectory's largest rate |(p, q, r)| or specific force |(x, y, z)| (offset 0),
+// or its largest |f| on one axis (offset 1 + axis), with the field of that row's largest part.
+struct TrajectoryPeak {
+  double value{0};
+  std::string field;  // body.trajectory.file for a file, "p_rad_s[12]" for arrays
+  std::string where;  // "FILE: p_rad_s (line 14): " for a file, "" for arrays
+};
+
+TrajectoryPeak trajectory_peak(const BodyTrajectory& tr, const std::string& file_field, bool force, int axis) {
+  TrajectoryPeak peak;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < tr.samples.size(); ++i) {
+    const Eigen::Vector3d& v = force ? tr.samples[i].specific_force : tr.samples[i].rate_rad_s;
+    const double m = axis < 0 ? v.norm() : std::abs(v(axis));
+    if (i == 0 || m > peak.value) {
+      peak.value = m;
+      at = i;
+    }
+  }
+  const Eigen::Vector3d& v = force ? tr.samples[at].specific_force : tr.samples[at].rate_rad_s;
+  Eigen::Index largest = axis;
+  if (axis < 0) v.cwiseAbs().maxCoeff(&largest);
+  const std::size_t first = tr.columns.size() - 6 + (force ? 3 : 0);
+  const std::string row = trajectory_field(tr, at, tr.columns[first + static_cast<std::size_t>(largest)]);
+  peak.field = tr.from_file ? file_field : row;
+  peak.where = tr.from_file ? tr.source + ": " + row + ": " : "";
+  return peak;
+}
+
+// The body's specific force on `axis` (its largest over a trajectory) and its field.
+Factor body_force(const Scenario& s, int axis) {
+  if (s.body.trajectory) {
+    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, s.body.trajectory_spec->file_field, true, axis);
+    return {p.value, p.field};
+  }
+  return {s.body.specific_force[static_cast<std::size_t>(axis)], body_force_field(s, axis)};
+}
+
 // The fields the body's rates come from: q, r, their weave amplitudes, p.
 std::vector<Factor> body_rate_factors(const Scenario& s) {
   const BodyProfile& b = s.body;
@@ -112,8 +150,28 @@ const std::string& largest_field(const std::vector<Factor>& factors) {
   return largest->field;
 }
 
+void check_trajectory_body(const Scenario& s) {
+  const BodyProfile& b = s.body;
+  if (!b.trajectory) {
+    throw ScenarioError(s.file, b.trajectory_spec->file_field,
+                        "missing required field (or give the trajectory's columns from Python)");
+  }
+  const TrajectoryPeak rate = trajectory_peak(*b.trajectory, b.trajectory_spec->file_field, false, -1);
+  const double turn = rate.value * s.run.tick_s;
+  if (!(turn <= kTwoPi / 2)) {
+    throw ScenarioError(s.file, rate.field,
+                        rate.where + "the body would turn by " + format(turn) + " rad in one tick at this row's rates (" +
+                            format(rate.value) + " rad/s), more than pi: give a shorter tick or lower rates");
+  }
+  check_trajectory_covers_run(s);
+}
+
 void check_body(const Scenario& s) {
   const BodyProfile& b = s.body;
+  if (b.trajectory_spec) {
+    check_trajectory_body(s);
+    return;
+  }
   const double tick = s.run.tick_s;
   const std::vector<Factor> peaks = body_rate_factors(s);
   const double turn = peak_body_rate(peaks) * tick;
@@ -175,11 +233,11 @@ std::vector<Term> rotor_torque_terms(const Scenario& s, int axis) {
                                                                                              : "gyro.rotor.spin_inertia";
   const Factor h{kTwoPi * s.gyro.spin_hz * m.spin_inertia, spin_field};
   const Factor largest_angle{kTwoPi / 2, ""};
-  const double accel = s.body.specific_force[static_cast<std::size_t>(drifted) + 1];
+  const Factor force = body_force(s, drifted + 1);
+  const double accel = force.value;
   const double g_excess = std::abs(accel) > m.gravity ? std::abs(accel) / m.gravity - 1.0 : 0.0;
-  const std::string accel_field = extremeness(accel) >= extremeness(m.gravity)
-                                      ? body_force_field(s, drifted + 1)
-                                      : std::string("gyro.gravity");
+  const std::string accel_field = extremeness(accel) >= extremeness(m.gravity) ? force.field
+                                                                               : std::string("gyro.gravity");
   terms.push_back(product({h, {e.static_drift_rad_s, err + "static_drift_rad_s"}}));
   terms.push_back(product({h, {e.in_plane_erection_1_s, err + "in_plane_erection_1_s"}, largest_angle}));
   terms.push_back(product({h, {e.cross_plane_erection_1_s, err + "cross_plane_erection_1_s"}, largest_angle}));
@@ -193,9 +251,10 @@ void check_rotor_torque(const Scenario& s) {
   // The g-sensitive drift's factor accel / gravity is computed on its own first.
   const GyroModelConfig<double>& m = s.gyro.gyro;
   for (std::size_t i = 0; i < 2; ++i) {
-    const double accel = s.body.specific_force[i + 1];
+    const Factor force = body_force(s, static_cast<int>(i) + 1);
+    const double accel = force.value;
     if (!(std::abs(accel) / m.gravity <= static_cast<double>(std::numeric_limits<T>::max()))) {
-      const std::string accel_field = body_force_field(s, static_cast<int>(i) + 1);
+      const std::string& accel_field = force.field;
       throw ScenarioError(s.file, extremeness(accel) >= extremeness(m.gravity) ? accel_field : "gyro.gravity",
                           "the acceleration in units of gyro.gravity is not representable in " +
                               std::string(precision_name(s)));
@@ -242,20 +301,35 @@ void check_rotor_torque(const Scenario& s) {
 void check_gimbal_envelope(const Scenario& s) {
   if (s.gyro.plant != PlantKind::kGimbal) return;
   const GimbalPlantConfig<double>& g = s.gyro.gimbal;
-  const std::vector<Factor> rates = body_rate_factors(s);
-  if (!(peak_body_rate(rates) <= g.max_body_rate_rad_s)) {
+  std::vector<Factor> rates;
+  double peak_rate = 0;
+  std::string where;
+  if (s.body.trajectory) {
+    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, s.body.trajectory_spec->file_field, false, -1);
+    rates = {{p.value, p.field}};
+    peak_rate = p.value;
+    where = p.where;
+  } else {
+    rates = body_rate_factors(s);
+    peak_rate = peak_body_rate(rates);
+  }
+  if (!(peak_rate <= g.max_body_rate_rad_s)) {
     throw ScenarioError(s.file, largest_field(rates),
-                        "the body's peak rate |(p, q, r)| of " + format(peak_body_rate(rates)) +
+                        where + "the body's peak rate |(p, q, r)| of " + format(peak_rate) +
                             " rad/s is more than gyro.gimbal.max_body_rate_rad_s (" +
                             format(g.max_body_rate_rad_s) + ")");
   }
-  const std::vector<Factor> force = {{s.body.specific_force[0], body_force_field(s, 0)},
-                                     {s.body.specific_force[1], body_force_field(s, 1)},
-                                     {s.body.specific_force[2], body_force_field(s, 2)}};
-  const double f = std::hypot(force[0].value, std::hypot(force[1].value, force[2].value));
+  std::vector<Factor> force = {body_force(s, 0), body_force(s, 1), body_force(s, 2)};
+  double f = std::hypot(force[0].value, std::hypot(force[1].value, force[2].value));
+  if (s.body.trajectory) {
+    const TrajectoryPeak p = trajectory_peak(*s.body.trajectory, s.body.trajectory_spec->file_field, true, -1);
+    force = {{p.value, p.field}};
+    f = p.value;
+    where = p.where;
+  }
   if (!(f <= g.max_specific_force)) {
     throw ScenarioError(s.file, largest_field(force),
-                        "the body's specific force of " + format(f) + " is more than "
+                        where + "the body's specific force of " + format(f) + " is more than "
                             "gyro.gimbal.max_specific_force (" + format(g.max_specific_force) + ")");
   }
   const Term unbalance = product({{g.mass_unbalance, "gyro.gimbal.mass_unbalance"}, {f, largest_field(force)}});
@@ -275,6 +349,18 @@ void check_gimbal_envelope(const Scenario& s) {
 }
 
 }  // namespace
+
+void check_trajectory_covers_run(const Scenario& s) {
+  if (!s.body.trajectory) return;
+  const double run_s = static_cast<double>(s.run.ticks) * s.run.tick_s;
+  const double end_s = s.body.trajectory->end_s();
+  // A last tick within a millionth of a tick of the end (rounding) takes the last row.
+  if (!(run_s <= end_s + 1e-6 * s.run.tick_s)) {
+    throw ScenarioError(s.file, s.run.length_field,
+                        "the run lasts " + format(run_s) + " s, past the end of the body's trajectory at " +
+                            format(end_s) + " s (" + s.body.trajectory->source + ")");
+  }
+}
 
 void check_precision_range(const Scenario& s) {
   if (s.run.precision == Precision::kFloat) float_range(s);

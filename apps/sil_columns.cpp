@@ -3,6 +3,8 @@
 #include <type_traits>
 #include <variant>
 
+#include "scenario_limits.hpp"
+
 namespace gyro::sil {
 
 ColumnRecorder::ColumnRecorder() { set_columns(false); }
@@ -41,16 +43,14 @@ void ColumnRecorder::on_tick(const TickRecord& r) {
 }
 
 Scenario prepare_scenario(const std::optional<std::string>& path, std::string_view json_text, const std::string& name,
-                          std::optional<Precision> precision, std::optional<std::uint64_t> ticks) {
-  Scenario s;
-  if (path) {
-    s = load_scenario(*path, precision);
-  } else {
-    s = parse_scenario(json_text, name);
-    if (precision) s.run.precision = *precision;
-    check_configs(s);
-  }
+                          std::optional<Precision> precision, std::optional<std::uint64_t> ticks,
+                          const TrajectoryTable* trajectory) {
+  Scenario s = path ? read_scenario(*path) : parse_scenario(json_text, name);
+  if (precision) s.run.precision = *precision;
+  if (trajectory != nullptr) attach_trajectory(s, *trajectory);
+  check_configs(s);
   if (ticks) s.run.ticks = *ticks;
+  check_trajectory_covers_run(s);
   return s;
 }
 

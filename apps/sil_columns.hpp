@@ -43,10 +43,12 @@ class ColumnRecorder : public TickObserver {
 };
 
 // The scenario as gyro_sil takes it (read from `path`, or parsed from `json_text` named `name`,
-// and checked), with the precision and the length overridden when given. Throws ScenarioError.
+// and checked), with the precision and the length overridden when given, and the body's
+// trajectory from `trajectory` when given (attach_trajectory). Throws ScenarioError.
 [[nodiscard]] Scenario prepare_scenario(const std::optional<std::string>& path, std::string_view json_text,
                                         const std::string& name, std::optional<Precision> precision,
-                                        std::optional<std::uint64_t> ticks);
+                                        std::optional<std::uint64_t> ticks,
+                                        const TrajectoryTable* trajectory = nullptr);
 
 // Why a run of `s` is refused when its CSV could pass `max_bytes` bytes (gyro_sil's bound, checked
 // before the run; the columns in memory take less: 8 bytes a number against 16 or more

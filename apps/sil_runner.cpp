@@ -268,6 +268,11 @@ RunSummary run_in(const Scenario& s, TickObserver& observer, const RunOptions& o
   sum.precision = s.run.precision;
   sum.ticks = s.run.ticks;
 
+  try {
+    check_trajectory_covers_run(s);  // the curve is never extrapolated
+  } catch (const ScenarioError& e) {
+    throw RunError(e.what());
+  }
   BodyMotion body(s.body, s.run.tick_s);
   GuidancePlayer guidance(s.guidance);
   Progress progress(options, s.run.ticks);

@@ -62,19 +62,23 @@ __all__ = [
 ]
 
 
-def run_sil(scenario, *, precision=None, ticks=None, max_output_bytes=DEFAULT_MAX_OUTPUT_BYTES):
+def run_sil(scenario, *, precision=None, ticks=None, max_output_bytes=DEFAULT_MAX_OUTPUT_BYTES, trajectory=None):
     """Runs a SIL scenario as gyro_sil does and returns its time history.
 
     scenario: a scenario file (str or os.PathLike) or a dict with a scenario's contents
     (docs/scenarios.md). precision: 'float' or 'double' overrides run.precision; ticks
-    overrides the run's length. max_output_bytes: a run whose output could be larger (gyro_sil's
+    overrides the run's length. trajectory: the body's recorded motion as a dict of column
+    name to a 1-D array (the columns of a body.trajectory file: t_s, qw, qx, qy, qz or
+    roll_rad, pitch_rad, yaw_rad, p_rad_s, q_rad_s, r_rad_s, fx, fy, fz), for a scenario whose
+    body.trajectory has no file; checked as a file's rows are (a refusal names column[index]).
+    max_output_bytes: a run whose output could be larger (gyro_sil's
     bound of its CSV, (ticks + 1) rows at their widest) is refused with a ValueError before it
     starts; the default is gyro_sil's --max-output-bytes default, DEFAULT_MAX_OUTPUT_BYTES (1 GiB).
     Returns a SilRun (columns keyed by the CSV's names, and the component's telemetry).
     Raises ScenarioError (naming the JSON field) or RunError. Ctrl-C raises KeyboardInterrupt
     within about 20 ms (and one tick).
     """
-    columns, telemetry = _run_sil(scenario, precision, ticks, max_output_bytes)
+    columns, telemetry = _run_sil(scenario, precision, ticks, max_output_bytes, trajectory)
     return SilRun(columns=columns, telemetry=telemetry)
 
 

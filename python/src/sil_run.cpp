@@ -94,8 +94,39 @@ py::dict telemetry(const sil::RunSummary& s) {
   return t;
 }
 
+// The body's trajectory handed in as columns: a mapping of column name (docs/scenarios.md,
+// body.trajectory) to a 1-D sequence of numbers, copied as float64.
+std::optional<sil::TrajectoryTable> trajectory_table(const py::object& trajectory) {
+  if (trajectory.is_none()) return std::nullopt;
+  if (!py::isinstance<py::dict>(trajectory)) {
+    throw py::type_error("trajectory must be a dict of column name to a 1-D array of numbers");
+  }
+  sil::TrajectoryTable t;
+  t.source = "<trajectory arrays>";
+  t.from_file = false;
+  const py::module_ np = py::module_::import("numpy");
+  for (const auto& item : trajectory.cast<py::dict>()) {
+    if (!py::isinstance<py::str>(item.first)) throw py::type_error("trajectory: column names must be str");
+    const std::string name = item.first.cast<std::string>();
+    const py::array_t<double, py::array::c_style | py::array::forcecast> a =
+        np.attr("asarray")(item.second, "float64");
+    if (a.ndim() != 1) {
+      throw py::value_error("trajectory[" + py::repr(item.first).cast<std::string>() + "]: expected a 1-D array, got " +
+                            std::to_string(a.ndim()) + " dimensions");
+    }
+    if (static_cast<std::size_t>(a.size()) > sil::kMaxTrajectoryRows) {
+      throw py::value_error("trajectory[" + py::repr(item.first).cast<std::string>() + "]: " +
+                            std::to_string(a.size()) + " rows, more than the limit of " +
+                            std::to_string(sil::kMaxTrajectoryRows));
+    }
+    t.names.push_back(name);
+    t.columns.emplace_back(a.data(), a.data() + a.size());
+  }
+  return t;
+}
+
 py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& precision,
-                  const py::object& ticks_arg, const py::object& max_output_bytes_arg) {
+                  const py::object& ticks_arg, const py::object& max_output_bytes_arg, const py::object& trajectory) {
   std::optional<sil::Precision> p;
   if (precision) {
     p = sil::parse_precision(*precision);
@@ -109,10 +140,11 @@ py::tuple run_sil(const py::object& scenario, const std::optional<std::string>& 
   const std::uint64_t max_output_bytes =
       whole_number(max_output_bytes_arg, "max_output_bytes", 1, std::numeric_limits<std::uint64_t>::max());
   const DocumentSource src = document_source(scenario, "scenario");
+  const std::optional<sil::TrajectoryTable> table = trajectory_table(trajectory);
   ColumnRecorder recorder;
   sil::RunSummary sum;
   try {
-    const sil::Scenario s = sil::prepare_scenario(src.path, src.text, src.name, p, ticks);
+    const sil::Scenario s = sil::prepare_scenario(src.path, src.text, src.name, p, ticks, table ? &*table : nullptr);
     const std::string too_large = sil::output_bound_refusal(s, max_output_bytes, "max_output_bytes");
     if (!too_large.empty()) throw py::value_error(too_large);
     sil::RunOptions options;
@@ -149,7 +181,7 @@ void bind_sil_run(py::module_& m) {
         "The scenario (a file path or a dict) as it is flown, its example or base expanded, as a dict: "
         "its \"gyro\" and \"component\" sections are SimulatedGyro's and GyroComponent's keywords.");
   m.def("_run_sil", &run_sil, py::arg("scenario"), py::arg("precision") = py::none(), py::arg("ticks") = py::none(),
-        py::arg("max_output_bytes") = sil::kDefaultMaxOutputBytes,
+        py::arg("max_output_bytes") = sil::kDefaultMaxOutputBytes, py::arg("trajectory") = py::none(),
         "(columns, telemetry) of a SIL run; gyro.run_sil wraps it in a SilRun.");
   m.attr("DEFAULT_MAX_OUTPUT_BYTES") = sil::kDefaultMaxOutputBytes;
   m.def(

@@ -151,3 +151,51 @@ def test_given_a_tracking_scenario_when_run_then_it_has_the_tracking_columns_las
     t = run["t"]
     assert run["pointing_error_true"][t < 0.3].min() > 0.19
     assert run["pointing_error_true"][t >= 0.8].max() < 3e-4
+
+
+def trajectory_columns(source_dir):
+    """The shipped trajectory file's columns as NumPy arrays."""
+    path = source_dir / "scenarios" / "trajectory_spinning.csv"
+    table = np.genfromtxt(path, delimiter=",", names=True)
+    return {name: np.asarray(table[name]) for name in table.dtype.names}
+
+
+def test_given_trajectory_arrays_then_the_run_equals_the_file_run(source_dir, gyro_sil, tmp_path):
+    path = source_dir / "scenarios" / "trajectory_spinning.json"
+    header, rows = gyro_sil_csv(gyro_sil, path, tmp_path)
+    with open(path) as f:
+        doc = json.load(f)
+    del doc["body"]["trajectory"]["file"]
+    run = gyro.run_sil(doc, trajectory=trajectory_columns(source_dir))
+    assert_same_as_csv(run, header, rows)
+    assert run.telemetry["gimbal_stop_hits"] == 0
+
+
+def test_given_bad_trajectory_arrays_then_the_refusal_names_column_and_index(source_dir):
+    with open(source_dir / "scenarios" / "trajectory_spinning.json") as f:
+        doc = json.load(f)
+    del doc["body"]["trajectory"]["file"]
+    cols = trajectory_columns(source_dir)
+    bad = dict(cols, t_s=cols["t_s"].copy())
+    bad["t_s"][5] = bad["t_s"][4]
+    with pytest.raises(gyro.ScenarioError) as e:
+        gyro.run_sil(doc, trajectory=bad)
+    assert e.value.field == "t_s[5]" and "is not after the previous" in str(e.value)
+    bad = dict(cols, qw=cols["qw"] * 1.01)
+    with pytest.raises(gyro.ScenarioError) as e:
+        gyro.run_sil(doc, trajectory=bad)
+    assert e.value.field == "qw[0]" and "not 1 within 1e-06" in str(e.value)
+    missing = {k: v for k, v in cols.items() if k != "fz"}
+    with pytest.raises(gyro.ScenarioError) as e:
+        gyro.run_sil(doc, trajectory=missing)
+    assert e.value.field == "fz" and "missing column" in str(e.value)
+    with pytest.raises(gyro.ScenarioError) as e:
+        gyro.run_sil(doc, trajectory=cols, ticks=1700)
+    assert "past the end of the body's trajectory at 1.6 s" in str(e.value)
+    with pytest.raises(ValueError):
+        gyro.run_sil(doc, trajectory=dict(cols, t_s=np.zeros((2, 2))))
+    with_file = json.loads(json.dumps(doc))
+    with_file["body"]["trajectory"]["file"] = str(source_dir / "scenarios" / "trajectory_spinning.csv")
+    with pytest.raises(gyro.ScenarioError) as e:
+        gyro.run_sil(with_file, trajectory=cols)
+    assert e.value.field == "body.trajectory.file"

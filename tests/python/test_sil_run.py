@@ -163,8 +163,7 @@ def trajectory_columns(source_dir):
 def test_given_trajectory_arrays_then_the_run_equals_the_file_run(source_dir, gyro_sil, tmp_path):
     path = source_dir / "scenarios" / "trajectory_spinning.json"
     header, rows = gyro_sil_csv(gyro_sil, path, tmp_path)
-    with open(path) as f:
-        doc = json.load(f)
+    doc = gyro.read_scenario(path)
     del doc["body"]["trajectory"]["file"]
     run = gyro.run_sil(doc, trajectory=trajectory_columns(source_dir))
     assert_same_as_csv(run, header, rows)
@@ -172,8 +171,7 @@ def test_given_trajectory_arrays_then_the_run_equals_the_file_run(source_dir, gy
 
 
 def test_given_bad_trajectory_arrays_then_the_refusal_names_column_and_index(source_dir):
-    with open(source_dir / "scenarios" / "trajectory_spinning.json") as f:
-        doc = json.load(f)
+    doc = gyro.read_scenario(source_dir / "scenarios" / "trajectory_spinning.json")
     del doc["body"]["trajectory"]["file"]
     cols = trajectory_columns(source_dir)
     bad = dict(cols, t_s=cols["t_s"].copy())

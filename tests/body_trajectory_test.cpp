@@ -245,10 +245,8 @@ TEST(BodyTrajectoryRefusal, TooLargeFileRefusedFromItsSize) {
 // ---------------------------------------------------------------------------------------
 // The scenario's body.trajectory.
 
-nlohmann::json shipped_document() {
-  std::ifstream in(kTrajectoryScenarios / "trajectory_spinning.json");
-  return nlohmann::json::parse(in);
-}
+// The shipped trajectory scenario as it is flown (its base expanded).
+nlohmann::json shipped_document() { return *read_scenario(kTrajectoryScenarios / "trajectory_spinning.json").document; }
 
 ScenarioError scenario_refusal(const nlohmann::json& doc, const TrajectoryTable* table = nullptr,
                                std::optional<std::uint64_t> ticks = std::nullopt) {

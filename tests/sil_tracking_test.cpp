@@ -7,9 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -25,16 +23,12 @@ using json = nlohmann::json;
 
 const fs::path kScenarios = fs::path(GYRO_SOURCE_DIR) / "scenarios";
 
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return json::parse(s.str());
-}
+// A shipped scenario as it is flown (its example or base expanded).
+json flown(const fs::path& p) { return *read_scenario(p).document; }
 
 // The seeker gyro on a body at rest, uncaged at 0.2 s, tracking from 0.3 s with `track`.
 json seeker_tracking(const json& track, double duration_s = 1.5) {
-  json s = read_json(kScenarios / "seeker_slew.json");
+  json s = flown(kScenarios / "seeker_slew.json");
   s["run"]["duration_s"] = duration_s;
   s["body"] = {{"rate_rad_s", {0.0, 0.0, 0.0}}};
   s["guidance"] = {{"schedule", {{{"t_s", 0.0}, {"request", "none"}}, {{"t_s", 0.2}, {"request", "uncage"}}}},

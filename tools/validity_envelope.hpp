@@ -279,6 +279,27 @@ inline V2 guidance_command(const Path& path, const BodyTurn& body, const V2& mea
   return body_rate_on_gimbal(gimbal_frame_at(measured), V3(path.angular_velocity(body) + pull));
 }
 
+// The component closed around the stub on a case's turning body, configured and started (the
+// body at its t = 0 attitude); `started` false when either side refused.
+struct ClosedLoopRig {
+  SimulatedGyro<double> stub;
+  GyroComponent<double> comp{stub};
+  SilLoop<double, GyroComponent<double>> loop{stub, comp};
+  BodySample<double> sample;
+  bool started{false};
+
+  ClosedLoopRig(const BodyTurn& body, const SimulatedGyroConfig<double>& stub_config,
+                const GyroComponentConfig<double>& cc) {
+    sample.rate_rad_s = body.rate_rad_s;
+    sample.R_earth_to_body = body.R_earth_to_body(0.0);
+    if (!stub.configure(stub_config).ok() || !comp.configure(cc).ok()) return;
+    const SilStatus<Status> s = loop.start(sample);
+    started = s.stub == Status::kOk && s.component == Status::kOk;
+  }
+  ClosedLoopRig(const ClosedLoopRig&) = delete;
+  ClosedLoopRig& operator=(const ClosedLoopRig&) = delete;
+};
+
 inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindowSeconds,
                                         const SimulatedGyroConfig<double>& stub_config = Seeker::stub(),
                                         const GyroComponentConfig<double>& cc = Seeker::component()) {
@@ -286,15 +307,12 @@ inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindow
   const double dt = Seeker::kTick;
   const BodyTurn body(k);
   const Path path{k};
-  SimulatedGyro<double> stub;
-  GyroComponent<double> comp(stub);
-  SilLoop<double, GyroComponent<double>> loop(stub, comp);
-  BodySample<double> sample;
-  sample.rate_rad_s = body.rate_rad_s;
-  sample.R_earth_to_body = body.R_earth_to_body(0.0);
-  if (!stub.configure(stub_config).ok() || !comp.configure(cc).ok()) return out;
-  const SilStatus<Status> started = loop.start(sample);
-  if (started.stub != Status::kOk || started.component != Status::kOk) return out;
+  ClosedLoopRig rig(body, stub_config, cc);
+  if (!rig.started) return out;
+  SimulatedGyro<double>& stub = rig.stub;
+  GyroComponent<double>& comp = rig.comp;
+  SilLoop<double, GyroComponent<double>>& loop = rig.loop;
+  BodySample<double>& sample = rig.sample;
   const std::uint64_t settle = static_cast<std::uint64_t>(std::lround(kSettleSeconds / dt));
   const std::uint64_t window = static_cast<std::uint64_t>(std::lround(window_s / dt));
   std::uint64_t free_tick = 0;
@@ -434,15 +452,12 @@ inline SettlingResult run_command_change(const Case& k, CommandShape shape,
   const double dt = Seeker::kTick;
   const BodyTurn body(k);
   const Path path{k};
-  SimulatedGyro<double> stub;
-  GyroComponent<double> comp(stub);
-  SilLoop<double, GyroComponent<double>> loop(stub, comp);
-  BodySample<double> sample;
-  sample.rate_rad_s = body.rate_rad_s;
-  sample.R_earth_to_body = body.R_earth_to_body(0.0);
-  if (!stub.configure(stub_config).ok() || !comp.configure(cc).ok()) return out;
-  const SilStatus<Status> started = loop.start(sample);
-  if (started.stub != Status::kOk || started.component != Status::kOk) return out;
+  ClosedLoopRig rig(body, stub_config, cc);
+  if (!rig.started) return out;
+  SimulatedGyro<double>& stub = rig.stub;
+  GyroComponent<double>& comp = rig.comp;
+  SilLoop<double, GyroComponent<double>>& loop = rig.loop;
+  BodySample<double>& sample = rig.sample;
   const auto ticks_of = [dt](double s) { return static_cast<std::uint64_t>(std::lround(s / dt)); };
   const std::uint64_t change_after = ticks_of(kChangeAfterSeconds);
   const std::uint64_t change_ticks = ticks_of(change_seconds(shape));

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates docs/model-validity.md and its plot docs/img/model_validity.png: the report's
 # model, the corrected model and the component against the gimbal plant over gimbal cone
-# 0-25 deg, body turn 0-2 rad/s and roll 0-20 rad/s (210 cases; about 10 s after the build).
+# 0-25 deg, body turn 0-2 rad/s and roll 0-20 rad/s (210 cases), the settling after a change of
+# command over the acceptance envelope (60 cases, three shapes) and the steady residual with
+# heavier gimbal rings (6 x 18 cases): about 10 s after the build.
 # Usage: scripts/model-validity.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."

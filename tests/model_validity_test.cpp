@@ -49,17 +49,8 @@ TEST_P(EnvelopeCorner, GIVEN_the_gimbal_plant_WHEN_slewing_along_the_cone_THEN_n
 
 // "cone20_turn0p5_roll10"
 std::string corner_name(const ::testing::TestParamInfo<Corner>& info) {
-  auto number = [](double v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    for (char& ch : s) {
-      if (ch == '.') ch = 'p';
-    }
-    return s;
-  };
   const Corner& c = info.param;
-  return "cone" + number(c.cone_deg) + "_turn" + number(c.turn_rad_s) + "_roll" + number(c.roll_rad_s);
+  return "cone" + name_number(c.cone_deg) + "_turn" + name_number(c.turn_rad_s) + "_roll" + name_number(c.roll_rad_s);
 }
 
 INSTANTIATE_TEST_SUITE_P(DoneWhenCorners, EnvelopeCorner,

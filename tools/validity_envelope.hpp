@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "gyro/gimbal_geometry.hpp"
 #include "gyro/gimbal_plant.hpp"
@@ -44,6 +45,17 @@ struct Case {
   double roll_rad_s{};  // p
   double scan_rad_s{};  // s: spin-axis speed round body x at the cone (0 when c = 0)
 };
+
+// A figure in a test's name: "0.5" -> "0p5", no trailing zeros.
+inline std::string name_number(double v) {
+  std::string s = std::to_string(v);
+  s.erase(s.find_last_not_of('0') + 1);
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  for (char& ch : s) {
+    if (ch == '.') ch = 'p';
+  }
+  return s;
+}
 
 // The body turning at constant rates from the identity attitude: a rotation about a fixed
 // axis, exact at any time.
@@ -267,22 +279,40 @@ inline V2 guidance_command(const Path& path, const BodyTurn& body, const V2& mea
   return body_rate_on_gimbal(gimbal_frame_at(measured), V3(path.angular_velocity(body) + pull));
 }
 
+// The component closed around the stub on a case's turning body, configured and started (the
+// body at its t = 0 attitude); `started` false when either side refused.
+struct ClosedLoopRig {
+  SimulatedGyro<double> stub;
+  GyroComponent<double> comp{stub};
+  SilLoop<double, GyroComponent<double>> loop{stub, comp};
+  BodySample<double> sample;
+  bool started{false};
+
+  ClosedLoopRig(const BodyTurn& body, const SimulatedGyroConfig<double>& stub_config,
+                const GyroComponentConfig<double>& cc) {
+    sample.rate_rad_s = body.rate_rad_s;
+    sample.R_earth_to_body = body.R_earth_to_body(0.0);
+    if (!stub.configure(stub_config).ok() || !comp.configure(cc).ok()) return;
+    const SilStatus<Status> s = loop.start(sample);
+    started = s.stub == Status::kOk && s.component == Status::kOk;
+  }
+  ClosedLoopRig(const ClosedLoopRig&) = delete;
+  ClosedLoopRig& operator=(const ClosedLoopRig&) = delete;
+};
+
 inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindowSeconds,
-                                        const SimulatedGyroConfig<double>& stub_config = Seeker::stub()) {
+                                        const SimulatedGyroConfig<double>& stub_config = Seeker::stub(),
+                                        const GyroComponentConfig<double>& cc = Seeker::component()) {
   ClosedLoopResult out;
   const double dt = Seeker::kTick;
   const BodyTurn body(k);
   const Path path{k};
-  const GyroComponentConfig<double> cc = Seeker::component();
-  SimulatedGyro<double> stub;
-  GyroComponent<double> comp(stub);
-  SilLoop<double, GyroComponent<double>> loop(stub, comp);
-  BodySample<double> sample;
-  sample.rate_rad_s = body.rate_rad_s;
-  sample.R_earth_to_body = body.R_earth_to_body(0.0);
-  if (!stub.configure(stub_config).ok() || !comp.configure(cc).ok()) return out;
-  const SilStatus<Status> started = loop.start(sample);
-  if (started.stub != Status::kOk || started.component != Status::kOk) return out;
+  ClosedLoopRig rig(body, stub_config, cc);
+  if (!rig.started) return out;
+  SimulatedGyro<double>& stub = rig.stub;
+  GyroComponent<double>& comp = rig.comp;
+  SilLoop<double, GyroComponent<double>>& loop = rig.loop;
+  BodySample<double>& sample = rig.sample;
   const std::uint64_t settle = static_cast<std::uint64_t>(std::lround(kSettleSeconds / dt));
   const std::uint64_t window = static_cast<std::uint64_t>(std::lround(window_s / dt));
   std::uint64_t free_tick = 0;
@@ -352,6 +382,156 @@ inline ClosedLoopResult run_closed_loop(const Case& k, double window_s = kWindow
   out.residual_fault = comp.telemetry().counters[6] > 0u;  // kResidualFault is bit 6
   out.ok = free_tick > 0;
   return out;
+}
+
+// ---------------------------------------------------------------------------------------
+// A change of command: the closed loop above, and kChangeAfterSeconds after the component
+// goes free (the cone acquired) guidance adds kChange to its command, as a step, as a ramp
+// over kRampSeconds, or as a chirp (a sine of amplitude kChange swept 0 -> kChirpTopHz over
+// kChirpSeconds, ending at zero). Measured against the plant's true spin-axis rate (the stub's
+// truth at tick k against the rate the component flew from tick k-1): the rate error
+// relative to the commanded rate, or to |kChange| where the command is smaller (a chirp
+// passes through zero); the peak from the change on, and the settling time: from the end of
+// the change to the last tick the error is beyond 1 %, within kAfterChangeSeconds.
+
+enum class CommandShape { kStep, kRamp, kChirp };
+
+inline const char* shape_name(CommandShape s) {
+  return s == CommandShape::kStep ? "step" : s == CommandShape::kRamp ? "ramp" : "chirp";
+}
+
+inline constexpr double kChangeAfterSeconds = kSettleSeconds;
+inline constexpr double kRampSeconds = 0.01;
+inline constexpr double kChirpSeconds = 0.1;
+inline constexpr double kChirpTopHz = 40.0;
+inline constexpr double kAfterChangeSeconds = 0.15;
+inline constexpr double kSettleBand = 0.01;
+inline const V2 kChange(0.25, -0.25);  // rad/s on (y_I, z_I): with the path, up to the slew limit
+
+// How long the change itself lasts, and its share of kChange tau s after it begins.
+inline double change_seconds(CommandShape s) {
+  return s == CommandShape::kStep ? 0.0 : s == CommandShape::kRamp ? kRampSeconds : kChirpSeconds;
+}
+inline double change_share(CommandShape s, double tau) {
+  if (tau < 0.0) return 0.0;
+  if (s == CommandShape::kStep) return 1.0;
+  if (s == CommandShape::kRamp) return std::min(1.0, tau / kRampSeconds);
+  if (tau >= kChirpSeconds) return 0.0;
+  // phase 2 pi (f1 / (2 T)) tau^2: 2 pi f1 T / 2 = 4 pi at the end, sin = 0 there.
+  return std::sin(kPiD * kChirpTopHz / kChirpSeconds * tau * tau);
+}
+
+// The plant's nutation frequency at pitch angle theta (docs/gimbal-plant.md, the mass matrix
+// with the spin held): pitch J1 = Iy + A; yaw, for the spin axis's rate on z_I (psi' cos th),
+// J2 = (Oz + (Ix + J0) s^2 + (Iz + A) c^2) / c^2; beta = H / sqrt(J1 J2).
+inline double plant_nutation_rad_s(const GimbalPlantConfig<double>& g, double theta, double spin_inertial_rad_s) {
+  const double s = std::sin(theta), c = std::cos(theta);
+  const double a = g.rotor_transverse_inertia;
+  const double j1 = g.inner_gimbal_inertia(1) + a;
+  const double j2 =
+      (g.outer_gimbal_inertia(2) + (g.inner_gimbal_inertia(0) + g.spin_inertia) * s * s + (g.inner_gimbal_inertia(2) + a) * c * c) /
+      (c * c);
+  return std::abs(g.spin_inertia * spin_inertial_rad_s) / std::sqrt(j1 * j2);
+}
+
+struct SettlingResult {
+  bool ok{false};                // every call accepted, free before the change, no safe mode
+  double settle_s{};             // from the end of the change; kAfterChangeSeconds: not settled
+  bool settled{false};           // within the band before the measurement ended
+  double peak_error_rel{};       // from the change on
+  double error_50ms_rel{};       // worst from 50 ms after the end of the change on
+  double nutation_period_s{};    // the plant's, at the change
+  double pitch_at_change_rad{};  // the plant's pitch gimbal angle then
+  std::uint32_t flags_seen{};    // OR of the component's flags from the change on
+};
+
+inline SettlingResult run_command_change(const Case& k, CommandShape shape,
+                                         const SimulatedGyroConfig<double>& stub_config = Seeker::stub(),
+                                         const GyroComponentConfig<double>& cc = Seeker::component()) {
+  SettlingResult out;
+  const double dt = Seeker::kTick;
+  const BodyTurn body(k);
+  const Path path{k};
+  ClosedLoopRig rig(body, stub_config, cc);
+  if (!rig.started) return out;
+  SimulatedGyro<double>& stub = rig.stub;
+  GyroComponent<double>& comp = rig.comp;
+  SilLoop<double, GyroComponent<double>>& loop = rig.loop;
+  BodySample<double>& sample = rig.sample;
+  const auto ticks_of = [dt](double s) { return static_cast<std::uint64_t>(std::lround(s / dt)); };
+  const std::uint64_t change_after = ticks_of(kChangeAfterSeconds);
+  const std::uint64_t change_ticks = ticks_of(change_seconds(shape));
+  const std::uint64_t after = ticks_of(kAfterChangeSeconds);
+  const std::uint64_t after_50ms = ticks_of(0.05);
+  std::uint64_t free_tick = 0, change_tick = 0, last_out = 0;
+  V2 flown = V2::Zero();
+  GuidanceCommand<double> command;
+  const std::uint64_t last = kUncageTick + cc.uncage_settle_ticks + 2 + change_after + change_ticks + after;
+  for (std::uint64_t tick = 1; tick <= last; ++tick) {
+    sample.R_earth_to_body = body.R_earth_to_body(static_cast<double>(tick) * dt);
+    const bool free_before = comp.mode() == GyroMode::kFree;
+    if (free_tick > 0 && change_tick == 0 && tick > free_tick + change_after) {
+      const GimbalPlant<double>* plant = stub.gimbal_plant();
+      if (plant == nullptr) return out;  // the report's plant: no gimbal geometry
+      change_tick = tick;
+      out.pitch_at_change_rad = plant->gimbal_angle_rad()(0);
+      out.nutation_period_s =
+          2.0 * kPiD / plant_nutation_rad_s(stub_config.gimbal, out.pitch_at_change_rad, plant->spin_inertial_rad_s());
+    }
+    const double tau = change_tick > 0 ? static_cast<double>(tick - change_tick) * dt : -1.0;
+    command.request = tick == kUncageTick ? ModeRequest::kUncage : ModeRequest::kNone;
+    command.slew_rate_cmd_rad_s = free_before ? V2(guidance_command(path, body, comp.telemetry().gimbal_measured_rad) +
+                                                   change_share(shape, tau) * kChange)
+                                              : V2(V2::Zero());
+    const SilStatus<Status> ran = loop.tick(tick, sample, command);
+    if (ran.stub != Status::kOk || ran.component != Status::kOk || comp.mode() == GyroMode::kFault) return out;
+    // From the tick after the first changed command was flown.
+    if (change_tick > 0 && tick > change_tick) {
+      const double err = (stub.spin_axis_rate_rad_s() - flown).norm() / std::max(flown.norm(), kChange.norm());
+      out.peak_error_rel = std::max(out.peak_error_rel, err);
+      const std::uint64_t since_end = tick - change_tick - 1;  // ticks since the change ended, once >= change_ticks
+      if (since_end >= change_ticks + after_50ms) out.error_50ms_rel = std::max(out.error_50ms_rel, err);
+      if (err > kSettleBand) last_out = tick;
+      out.flags_seen |= comp.telemetry().flags;
+    }
+    flown = comp.telemetry().rate_cmd_rad_s;
+    if (free_tick == 0 && comp.mode() == GyroMode::kFree) free_tick = tick;
+  }
+  if (change_tick == 0) return out;
+  const std::uint64_t end = change_tick + change_ticks;  // the last tick whose error the change drives
+  out.settle_s = last_out > end ? static_cast<double>(last_out - end) * dt : 0.0;
+  out.settled = last_out < last;
+  out.ok = true;
+  return out;
+}
+
+// The seeker with heavier gimbal rings at the same effective inertias at zero gimbal angles
+// (J1 = Iy + A = J, J2 = Oz + Iz + A = J) and the same momentum H: the rings (thin, as the
+// seeker's) take `ring_share` of J, the rotor the rest (A = (1 - share) J); where that leaves
+// J0 > 2A (no rigid rotor), J0 = 2A (a flat disc) spinning faster for the same H.
+struct Rig {
+  SimulatedGyroConfig<double> stub;
+  GyroComponentConfig<double> component;
+};
+
+inline Rig heavy_ring_rig(double ring_share) {
+  Rig r{Seeker::stub(), Seeker::component()};
+  const double j = Seeker::kJ;
+  const double ring = ring_share * j;
+  GimbalPlantConfig<double>& g = r.stub.gimbal;
+  g.rotor_transverse_inertia = j - ring;
+  g.inner_gimbal_inertia = V3(ring / 2, ring, ring / 2);
+  g.outer_gimbal_inertia = V3(ring, ring / 2, ring / 2);
+  const double j0 = std::min(Seeker::kJ0, 2.0 * g.rotor_transverse_inertia);
+  const double spin_hz = Seeker::kSpinHz * Seeker::kJ0 / j0;
+  g.spin_inertia = j0;
+  g.max_spin_hz = spin_hz;
+  r.stub.gyro.spin_inertia = j0;
+  r.stub.spin_hz = spin_hz;
+  r.component.spin_inertia = j0;
+  r.component.min_spin_hz *= spin_hz / r.component.nominal_spin_hz;
+  r.component.nominal_spin_hz = spin_hz;
+  return r;
 }
 
 }  // namespace gyro::validity

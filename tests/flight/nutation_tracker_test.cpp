@@ -1,5 +1,6 @@
-// The nutation tracker (gyro/nutation_tracker.hpp): the nutation frequency and the shaper's
-// design at the spin flown, kept within a tolerance of the spin they were made for.
+// The nutation tracker (gyro/nutation_tracker.hpp): the nutation frequency as the torquers see
+// it at the spin flown, the gimbal's pitch and the inner gimbal's roll, and the shaper's design
+// for it, kept within a tolerance of the frequency they were made for.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,11 +19,21 @@ struct Rotor {
   double tick_s{1e-3};
 };
 
+const GimbalFrame<double> kCentred{};  // zero gimbal angles
+
+// The frame at pitch th (only its sine and cosine enter the nutation).
+GimbalFrame<double> pitched(double th) {
+  GimbalFrame<double> f;
+  f.sin_pitch = std::sin(th);
+  f.cos_pitch = std::cos(th);
+  return f;
+}
+
 TEST(NutationTracker, BetaIsTheMomentumOverTheGimbalInertia) {
   GYRO_VERIFIES("SHAPE-1");
   NutationTracker<double> n;
   const Rotor r;
-  const NutationUpdate<double> u = n.follow(100.0, r);
+  const NutationUpdate<double> u = n.follow(100.0, 0.0, kCentred, r);
   ASSERT_TRUE(u.redesigned);
   const double h = 2 * kPi<double> * 100.0 * r.spin_inertia;  // H = 2 pi f Is
   EXPECT_NEAR(n.beta_rad_s(), h / r.pitch_inertia, 1e-12 * h / r.pitch_inertia);
@@ -34,19 +45,20 @@ TEST(NutationTracker, TheDesignIsKeptWithinTheSpinTolerance) {
   GYRO_VERIFIES("SHAPE-3");
   NutationTracker<double> n;
   const Rotor r;
-  ASSERT_TRUE(n.follow(100.0, r).redesigned);
-  EXPECT_FALSE(n.follow(100.0 * (1 + 0.9e-3), r).redesigned);
-  EXPECT_FALSE(n.follow(100.0 * (1 - 0.9e-3), r).redesigned);
-  EXPECT_TRUE(n.follow(100.0 * (1 + 1.1e-3), r).redesigned);
+  ASSERT_TRUE(n.follow(100.0, 0.0, kCentred, r).redesigned);
+  EXPECT_FALSE(n.follow(100.0 * (1 + 0.9e-3), 0.0, kCentred, r).redesigned);
+  EXPECT_FALSE(n.follow(100.0 * (1 - 0.9e-3), 0.0, kCentred, r).redesigned);
+  EXPECT_TRUE(n.follow(100.0 * (1 + 1.1e-3), 0.0, kCentred, r).redesigned);
+  EXPECT_TRUE(n.follow(100.0 * (1 + 1.1e-3) * (1 - 1.1e-3), 0.0, kCentred, r).redesigned);
 }
 
 TEST(NutationTracker, ForgettingRedesignsAtTheSameSpin) {
   GYRO_VERIFIES("SHAPE-3");
   NutationTracker<double> n;
   const Rotor r;
-  (void)n.follow(100.0, r);
+  (void)n.follow(100.0, 0.0, kCentred, r);
   n.forget();
-  EXPECT_TRUE(n.follow(100.0, r).redesigned);
+  EXPECT_TRUE(n.follow(100.0, 0.0, kCentred, r).redesigned);
 }
 
 TEST(NutationTracker, FewerThanTwoTicksPerPeriodAliases) {
@@ -54,7 +66,7 @@ TEST(NutationTracker, FewerThanTwoTicksPerPeriodAliases) {
   NutationTracker<double> n;
   Rotor r;
   r.tick_s = 1.01 * kPi<double> / (2 * kPi<double> * 100.0 * r.spin_inertia / r.pitch_inertia);
-  (void)n.follow(100.0, r);
+  (void)n.follow(100.0, 0.0, kCentred, r);
   EXPECT_TRUE(n.aliased());
 }
 
@@ -63,19 +75,67 @@ TEST(NutationTracker, AliasingFollowsTheSpin) {
   GYRO_VERIFIES("TLM-3", "SHAPE-3");
   NutationTracker<double> n;
   const Rotor r;
-  (void)n.follow(1500.0, r);
+  (void)n.follow(1500.0, 0.0, kCentred, r);
   EXPECT_TRUE(n.aliased());
-  (void)n.follow(500.0, r);
+  (void)n.follow(500.0, 0.0, kCentred, r);
   EXPECT_FALSE(n.aliased()) << "the spin dropped below twice the tick rate of nutation";
-  (void)n.follow(1500.0, r);
+  (void)n.follow(1500.0, 0.0, kCentred, r);
   EXPECT_TRUE(n.aliased());
 }
 
 TEST(NutationTracker, NoSpinNoNutationNoShaper) {
   GYRO_VERIFIES("SHAPE-1");
   NutationTracker<double> n;
-  const NutationUpdate<double> u = n.follow(0.0, Rotor{});
+  const NutationUpdate<double> u = n.follow(0.0, 0.0, kCentred, Rotor{});
   EXPECT_TRUE(u.redesigned);
+  EXPECT_EQ(n.beta_rad_s(), 0.0);
+  EXPECT_EQ(u.shaper.spacing, 0u);
+}
+
+// The motor-held spin adds C tan^2 th to the yaw inertia at pitch th (docs/gimbal-plant.md, the
+// mass matrix with the spin held, for the spin axis's rate on z_I and massless rings).
+TEST(NutationTracker, PitchAddsTheSpinInertiaToTheYaw) {
+  GYRO_VERIFIES("SHAPE-3");
+  EXPECT_DOUBLE_EQ(yaw_inertia_at_pitch(2e-4, 1e-4, 0.0), 2e-4);
+  EXPECT_DOUBLE_EQ(yaw_inertia_at_pitch(2e-4, 1e-4, 0.5), 2e-4 + 1e-4 * 0.25);
+  NutationTracker<double> n;
+  const Rotor r;
+  const double th = 0.35;
+  (void)n.follow(100.0, 0.0, pitched(th), r);
+  // H / sqrt(J1 J2) with J2 = (C s^2 + J c^2) / c^2: the yaw row of the held-spin mass
+  // matrix (Oz + (Ix + J0) s^2 + (Iz + A) c^2) over cos^2 th, with the rings massless (A = J).
+  const double h = 2 * kPi<double> * 100.0 * r.spin_inertia;
+  const double s = std::sin(th), c = std::cos(th);
+  const double j2 = (r.spin_inertia * s * s + r.yaw_inertia * c * c) / (c * c);
+  EXPECT_NEAR(n.beta_rad_s(), h / std::sqrt(r.pitch_inertia * j2), 1e-12 * h / r.pitch_inertia);
+}
+
+TEST(NutationTracker, ThePitchMovingTheNutationRedesigns) {
+  GYRO_VERIFIES("SHAPE-3");
+  NutationTracker<double> n;
+  const Rotor r;
+  ASSERT_TRUE(n.follow(100.0, 0.0, kCentred, r).redesigned);
+  // J2 grows by C tan^2 th / J2 = tan^2 th / 2: beta falls by about tan^2 th / 4.
+  EXPECT_FALSE(n.follow(100.0, 0.0, pitched(0.05), r).redesigned);  // 0.06 %
+  EXPECT_TRUE(n.follow(100.0, 0.0, pitched(0.2), r).redesigned);    // 1 %
+}
+
+// The inner gimbal rolling at r: the rotor's momentum is C (spin + r), and the torquers, which
+// roll with the inner gimbal, see the nutation (turning with the spin) slower by r.
+TEST(NutationTracker, RollAddsToTheMomentumAndTurnsTheTorquers) {
+  GYRO_VERIFIES("SHAPE-3");
+  NutationTracker<double> n;
+  const Rotor r;
+  const double roll = 40.0;
+  (void)n.follow(100.0, roll, kCentred, r);
+  const double h = r.spin_inertia * (2 * kPi<double> * 100.0 + roll);
+  EXPECT_NEAR(n.beta_rad_s(), h / r.pitch_inertia - roll, 1e-12 * h / r.pitch_inertia);
+}
+
+TEST(NutationTracker, AnOverflowingSpinGivesNoShaper) {
+  GYRO_VERIFIES("SHAPE-1");
+  NutationTracker<double> n;
+  const NutationUpdate<double> u = n.follow(1e300, 0.0, kCentred, Rotor{});
   EXPECT_EQ(n.beta_rad_s(), 0.0);
   EXPECT_EQ(u.shaper.spacing, 0u);
 }

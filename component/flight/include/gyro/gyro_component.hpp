@@ -75,8 +75,6 @@ class GyroComponent {
     const PickoffVerdict pick = pickoffs_.accept(raw, port_ok, ticks.ticks, mode_ != GyroMode::kFault,
                                                  {config_.pickoff_range_rad, config_.max_pickoff_step_rad});
     const SpinFlown<T> spin = spin_flown(raw, port_ok, config_);
-    const NutationUpdate<T> nutation = nutation_.follow(spin.hz, config_);
-    if (nutation.redesigned) shaper_.use(nutation.shaper);
 
     const bool measurable = pick.accepted && guidance.nav_ok;
     const Prediction prediction =
@@ -90,12 +88,15 @@ class GyroComponent {
         next_mode(mode_, {guidance.request, measurable, fault.fault, settle_ticks_, config_.uncage_settle_ticks}));
 
     const GimbalFrame<T>& frame = estimator_.frame(guidance.nav_ok, pickoffs_.measured());
+    const T roll = estimator_.inner_gimbal_roll_rad_s();
+    const NutationUpdate<T> nutation = nutation_.follow(spin.hz, roll, frame, config_);
+    if (nutation.redesigned) shaper_.use(nutation.shaper);
     const Vector2<T> body =
         guidance.nav_ok ? body_rate_on_gimbal(frame, guidance_.navigation().body_rate_rad_s()) : Vector2<T>::Zero();
     const RateCommand<T> rate =
         torque_law_.rate_command(mode_, frame, body, pickoffs_.measured(), pick.accepted, guidance_.slew_cmd_rad_s());
     const TorqueCommand<T> wanted =
-        torque_law_.torque_command(frame, rate, body, spin.hz, estimator_.inner_gimbal_roll_rad_s());
+        torque_law_.torque_command(frame, rate, body, spin.hz, roll);
     const Vector2<T> torque = shape_torque(wanted.torque);
     const bool written = port_.write_torquer(torque) == PortStatus::kOk;
     monitors_.torquer_written(written);

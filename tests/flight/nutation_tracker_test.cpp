@@ -17,6 +17,8 @@ struct Rotor {
   double friction{0};
   double spin_inertia{1e-4};
   double tick_s{1e-3};
+  double gimbal_cone_limit_rad{0.5};
+  double max_body_rate_rad_s{100};
 };
 
 const GimbalFrame<double> kCentred{};  // zero gimbal angles
@@ -130,6 +132,16 @@ TEST(NutationTracker, RollAddsToTheMomentumAndTurnsTheTorquers) {
   (void)n.follow(100.0, roll, kCentred, r);
   const double h = r.spin_inertia * (2 * kPi<double> * 100.0 + roll);
   EXPECT_NEAR(n.beta_rad_s(), h / r.pitch_inertia - roll, 1e-12 * h / r.pitch_inertia);
+}
+
+TEST(NutationTracker, GeometryBeyondTheEnvelopeDesignsForItsEdge) {
+  GYRO_VERIFIES("SHAPE-3");
+  const Rotor r;
+  NutationTracker<double> beyond, edge;
+  (void)beyond.follow(100.0, 1e30, pitched(1.5), r);  // an estimate gone wild, as after a fault
+  (void)edge.follow(100.0, r.max_body_rate_rad_s, pitched(r.gimbal_cone_limit_rad), r);
+  EXPECT_DOUBLE_EQ(beyond.beta_rad_s(), edge.beta_rad_s());
+  EXPECT_GT(beyond.beta_rad_s(), 0.0);
 }
 
 TEST(NutationTracker, AnOverflowingSpinGivesNoShaper) {

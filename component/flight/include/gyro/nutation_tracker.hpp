@@ -14,6 +14,7 @@
 // its transition is physics.)
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "gyro/gimbal_geometry.hpp"
@@ -49,13 +50,18 @@ class NutationTracker {
   template <typename Config>
   [[nodiscard]] NutationUpdate<T> follow(T spin, T roll_rad_s, const GimbalFrame<T>& frame, const Config& c) noexcept {
     NutationUpdate<T> u;
-    const T h = angular_momentum(spin, c.spin_inertia) + c.spin_inertia * roll_rad_s;
-    const T j2 = yaw_inertia_at_pitch(c.yaw_inertia, c.spin_inertia, frame.sin_pitch / frame.cos_pitch);
+    // The geometry within the envelope the configuration covers: the cone and the body's rate
+    // (a gimbal estimate or a roll beyond them, as after a fault, designs for their edge).
+    const T roll = std::clamp(roll_rad_s, -c.max_body_rate_rad_s, c.max_body_rate_rad_s);
+    const T tan_cone = std::tan(c.gimbal_cone_limit_rad);
+    const T tan_pitch = std::clamp(frame.sin_pitch / frame.cos_pitch, -tan_cone, tan_cone);
+    const T h = angular_momentum(spin, c.spin_inertia) + c.spin_inertia * roll;
+    const T j2 = yaw_inertia_at_pitch(c.yaw_inertia, c.spin_inertia, tan_pitch);
     const RotorParameters<T> p{c.pitch_inertia, j2, c.friction, h};
     const T beta_sq = detail::rate_matrix_terms(p).beta_sq;
     // The torquers roll with the inner gimbal about the spin axis; the nutation turns with the
     // spin, so they see it slower by the roll.
-    const T beta = (beta_sq > T(0) && std::isfinite(beta_sq)) ? std::abs(std::sqrt(beta_sq) - roll_rad_s) : T(0);
+    const T beta = (beta_sq > T(0) && std::isfinite(beta_sq)) ? std::abs(std::sqrt(beta_sq) - roll) : T(0);
     if (beta >= beta_low_ && beta <= beta_high_) return u;
     beta_ = beta;
     beta_low_ = beta * (T(1) - kBetaTolerance);

@@ -26,7 +26,8 @@
 //     uncaging->free after uncage_settle_ticks ticks; uncaging/free->caged on a cage request;
 //     any active mode->fault; fault->caged on a cage request; nothing else; an unknown
 //     request is no request);
-//   - the torque written is finite and within max_torque, zero when uncaging or in fault;
+//   - the torque written is finite and within max_torque; zero in fault, and when uncaging
+//     without stop protection once the torque shaper has emptied;
 //     kFaultLatched is raised exactly in fault;
 //   - a twin component handed the same calls and port answers publishes bit-identical
 //     telemetry and writes bit-identical torques (deterministic, nothing uninitialised);
@@ -359,6 +360,7 @@ void run(Bytes& in, std::uint8_t head) {
   bool have_tick = false, trusted = false;
   std::uint64_t last_tick = 0;
   std::uint32_t uncaging_ticks = 0;
+  std::uint32_t quiet_ticks = 0;  // uncaging ticks in a row without stop protection
   gyro::Vector2<T> held = gyro::Vector2<T>::Zero();
   for (int k = 0; k < kMaxTicks && (!in.exhausted() || script.repeat > 0); ++k) {
     script.next(in);
@@ -412,9 +414,10 @@ void run(Bytes& in, std::uint8_t head) {
     const gyro::Vector2<T>& w = port.torque;
     GYRO_FUZZ_CHECK(finite_coeffs(w));
     GYRO_FUZZ_CHECK(w.cwiseAbs().maxCoeff() <= cfg.max_torque * (T(1) + T(4) * std::numeric_limits<T>::epsilon()));
-    // Torquers off: at once in safe mode; while uncaging once the torque shaper has emptied
-    // (at most 2 x 8 ticks of it).
-    if (to == GyroMode::kFault || (to == GyroMode::kUncaging && uncaging_ticks >= 16)) GYRO_FUZZ_CHECK(w.isZero(T(0)));
+    // Torquers off: at once in safe mode; while uncaging, unless stop protection acts, once the
+    // torque shaper's history (2 kShaperMaxSpacing ticks) holds only such ticks.
+    quiet_ticks = (to == GyroMode::kUncaging && (after.flags & gyro::kGimbalStopProtect) == 0u) ? quiet_ticks + 1u : 0u;
+    if (to == GyroMode::kFault || quiet_ticks > 2u * gyro::kShaperMaxSpacing) GYRO_FUZZ_CHECK(w.isZero(T(0)));
     if (script.port.write_status == PortStatus::kOk) held = w;
     GYRO_FUZZ_CHECK(same_bits(after.torque_cmd, held));
 

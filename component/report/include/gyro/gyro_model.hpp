@@ -271,7 +271,11 @@ class GyroModel {
     GimbalFrame<T>& end = frames_[frame_index_ ^ 1u];
     gimbal_frame(R_earth_to_body, q, end);
     const GimbalAngles<T> g = gimbal_angles(end.spin_axis_body);
-    if (!all_finite(g.pitch_rad, g.yaw_rad)) return Status::kNumericalOverflow;
+    // The rate the accessors derive must be representable too: near gimbal lock the inner
+    // gimbal's roll feeds the rates until their turn onto the gimbal axes overflows.
+    if (!all_finite(g.pitch_rad, g.yaw_rad, transpose_times(end.gimbal_to_gyro, s.rate_rad_s))) {
+      return Status::kNumericalOverflow;
+    }
 
     std::uint32_t step_flags = gimbal_flag(g);
     const T lim = config_.small_angle_limit_rad;

@@ -113,6 +113,28 @@ TEST(Estimator, ARefusedStepStopsItUntilTheNextReading) {
   EXPECT_NEAR((e.predicted_rad() - g).cwiseAbs().maxCoeff(), 0.0, 1e-15) << "restarted at the reading";
 }
 
+TEST(Estimator, APredictionBeyondThePickoffRangeStopsIt) {
+  GYRO_VERIFIES("EST-9");
+  // The navigation's attitude jumps 1 rad in pitch in one tick: the inertial gyro is then
+  // predicted 1 rad off the body, beyond the pickoffs' 0.6 rad, where the gimbal cannot be.
+  Estimator<double> e = started_at(Vector2<double>(0.05, 0.0));
+  CheckedRotation<double> pitched;
+  ASSERT_TRUE(GyroModel<double>::check_body_attitude(frame_rotation_y(1.0), pitched));
+  const Navigation<double> jumped(pitched, Vector3<double>::Zero());
+  const Prediction p = e.predict(1, kSpin, jumped, true, Vector2<double>(0.05, 0.0));
+  EXPECT_GT(e.predicted_rad().cwiseAbs().maxCoeff(), kSeeker.pickoff_range_rad);
+  EXPECT_FALSE(p.compared);
+  EXPECT_NE(p.flags & kGimbalLimit, 0u);
+  EXPECT_FALSE(e.ready());
+  const Vector2<double> g(0.04, 0.01);
+  (void)e.predict(1, kSpin, jumped, true, g);
+  EXPECT_TRUE(e.ready());
+  EXPECT_NEAR((e.predicted_rad() - g).cwiseAbs().maxCoeff(), 0.0, 1e-15) << "restarted at the reading";
+  const Prediction next = e.predict(1, kSpin, jumped, true, g);
+  EXPECT_TRUE(next.compared);
+  EXPECT_LT(e.residual_rad().cwiseAbs().maxCoeff(), 1e-12);
+}
+
 TEST(Estimator, TheFrameIsTheEstimatorsOnlyWithNavigation) {
   GYRO_VERIFIES("EST-7");
   const Vector2<double> started(0.2, -0.1), pickoffs(-0.3, 0.25);

@@ -2,8 +2,9 @@
 // axes) advanced over the elapsed ticks with the torque the torquers held, its prediction of the
 // gimbal angles compared with the accepted reading, and a fraction of that residual fed back into
 // its attitude (turned at the start of the next step, with its rotation). It starts by the report's
-// uncaging at the measured gimbal angles; a step it cannot take (a refused input) stops it until
-// the next good reading starts it again.
+// uncaging at the measured gimbal angles; a step it cannot take (a refused input), or one that
+// predicts the gimbal beyond the pickoffs' range, stops it until the next good reading starts it
+// again.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +34,7 @@ class Estimator {
     ready_ = false;
     tick_s_ = c.tick_s;
     gain_ = c.estimator_gain;
+    range_rad_ = c.pickoff_range_rad;
     return check;
   }
 
@@ -75,6 +77,13 @@ class Estimator {
     predicted_ = model_.gimbal_rad();
     if (model_.small_angle_exceeded()) p.flags |= kSmallAngleExceeded;
     if (model_.gimbal_limit_exceeded()) p.flags |= kGimbalLimit;
+    // Beyond the pickoffs' range the gimbal would be past its stop: the navigation and the model
+    // disagree (an attitude jump), and towards gimbal lock the model no longer holds.
+    if (!(predicted_.cwiseAbs().maxCoeff() <= range_rad_)) {
+      ready_ = false;  // re-initialised from the next good reading
+      p.flags |= kGimbalLimit;
+      return p;
+    }
     if (!measurable) return p;
     residual_ = gimbal_rad - predicted_;
     (void)model_.correct_gimbal_angles_at_next_step(Vector2<T>(gain_ * residual_));
@@ -106,6 +115,7 @@ class Estimator {
   bool ready_{false};
   T tick_s_{};
   T gain_{};
+  T range_rad_{};  // the pickoffs' range: the gimbal is never beyond it
   GyroStepInput<T> step_input_{};  // its attitude is passed checked
   Vector2<T> predicted_{Vector2<T>::Zero()};
   Vector2<T> residual_{Vector2<T>::Zero()};

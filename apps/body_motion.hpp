@@ -39,6 +39,9 @@ enum class RotationComposition : std::uint8_t {
   kRotationVector,  // angular velocity held over the tick (exact for constant rates)
   kPitchThenYaw,    // the report's GYMAIN: pitch by q*dt about body y, then yaw by r*dt about z
 };
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(RotationComposition /*tag*/) noexcept {
+  return {"rotation_vector", "pitch_then_yaw"};
+}
 
 struct WeaveProfile {
   double pitch_amplitude_rad_s{0};

@@ -27,6 +27,9 @@ inline constexpr double kTrajectoryUnitTolerance = 1e-6;
 // Attitude columns: a unit quaternion body to earth (qw, qx, qy, qz; scalar first), or 3-2-1
 // Euler angles earth to body (roll_rad, pitch_rad, yaw_rad), as body.attitude_rad.
 enum class TrajectoryAttitude : std::uint8_t { kQuaternion, kEuler321 };
+[[nodiscard]] constexpr std::array<const char*, 2> enum_names(TrajectoryAttitude /*tag*/) noexcept {
+  return {"quaternion", "euler_321"};
+}
 
 // The columns of a trajectory, in order, for its attitude form.
 [[nodiscard]] std::vector<std::string> trajectory_columns(TrajectoryAttitude form);

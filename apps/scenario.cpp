@@ -396,14 +396,7 @@ BodyProfile parse_body_trajectory(const Reader& body, const Scenario& s) {
   const Reader r = body.object("trajectory", {"file", "attitude", "tolerance_rad"});
   BodyProfile b;
   TrajectorySpec spec;
-  const std::string form = r.text("attitude", "quaternion");
-  if (form == "quaternion") {
-    spec.attitude = TrajectoryAttitude::kQuaternion;
-  } else if (form == "euler_321") {
-    spec.attitude = TrajectoryAttitude::kEuler321;
-  } else {
-    r.fail("attitude", "expected \"quaternion\" or \"euler_321\", got \"" + form + "\"");
-  }
+  spec.attitude = r.has("attitude") ? read_enum<TrajectoryAttitude>(r, "attitude") : TrajectoryAttitude::kQuaternion;
   if (r.has("tolerance_rad")) {
     spec.tolerance_rad = r.positive("tolerance_rad");
     if (!(spec.tolerance_rad <= 0.1)) r.fail("tolerance_rad", "must be <= 0.1, got " + Reader::format(spec.tolerance_rad));
@@ -440,14 +433,8 @@ BodyProfile parse_body(const Reader& r, Scenario& s) {
   } else {
     r.fail("rate_rad_s", "expected an array of 3 numbers (p, q, r) or 2 (q, r), got " + describe_json(rate));
   }
-  const std::string comp = r.text("composition", "rotation_vector");
-  if (comp == "rotation_vector") {
-    b.composition = RotationComposition::kRotationVector;
-  } else if (comp == "pitch_then_yaw") {
-    b.composition = RotationComposition::kPitchThenYaw;
-  } else {
-    r.fail("composition", "expected \"rotation_vector\" or \"pitch_then_yaw\", got \"" + comp + "\"");
-  }
+  b.composition =
+      r.has("composition") ? read_enum<RotationComposition>(r, "composition") : RotationComposition::kRotationVector;
   if (r.has("weave")) {
     const Reader w = r.object("weave", {"pitch_amplitude_rad_s", "yaw_amplitude_rad_s", "frequency_hz", "yaw_phase_rad"});
     b.weave.pitch_amplitude_rad_s = w.number("pitch_amplitude_rad_s", 0);

@@ -324,7 +324,9 @@ TEST(BodyTrajectoryScenario, TrajectoryAndProfileKeysTogetherAreRefused) {
   EXPECT_EQ(scenario_refusal(doc).field(), "body.rate_rad_s");
   doc = shipped_document();
   doc["body"]["trajectory"]["attitude"] = "euler";
-  EXPECT_EQ(scenario_refusal(doc).field(), "body.trajectory.attitude");
+  const ScenarioError form = scenario_refusal(doc);
+  EXPECT_EQ(form.field(), "body.trajectory.attitude");
+  EXPECT_EQ(form.reason(), "expected \"quaternion\" or \"euler_321\", got \"euler\"");
   doc = shipped_document();
   doc["body"]["trajectory"].erase("file");
   EXPECT_EQ(scenario_refusal(doc).field(), "body.trajectory.file");  // and no columns given

@@ -634,6 +634,12 @@ TEST(SilParser, GivenAKeyRepeatedInOneObjectThenRefusedWhereverItIsAndTheSameKey
   EXPECT_NO_THROW(check_configs(parse_scenario(slurp(kScenarios / "report_sample.json"), "t.json")));
 }
 
+TEST(SilParser, GivenAnUnknownCompositionThenTheRefusalNamesTheKnownOnes) {
+  const ScenarioError e = refusal_of(with("\"composition\": \"pitch_then_yaw\"", "\"composition\": \"yaw_then_pitch\""));
+  EXPECT_EQ(e.field(), "body.composition");
+  EXPECT_EQ(e.reason(), "expected \"rotation_vector\" or \"pitch_then_yaw\", got \"yaw_then_pitch\"");
+}
+
 TEST(SilParser, GivenIntegersOutOfRangeThenRefusedAsWrittenNeverWrapped) {
   const std::string fault = "\"seed\": 1,\n    \"faults\": [{\"kind\": \"dropout\", \"start_s\": 0.1, \"axis\": ";
   for (const char* axis : {"18446744073709551615", "9223372036854775808", "-9223372036854775808", "2", "-2"}) {

@@ -230,6 +230,39 @@ TYPED_TEST(GyroBadInput, GivenFiniteTorqueThatOverflowsThroughCrossCouplingThenN
   EXPECT_EQ(g.step_torque(in, Vector2<T>(T(10), T(-20))), Status::kOk);
 }
 
+// Rates whose norm is beyond the largest value, each component within it: the exact step's own
+// test can pass them while their turn onto the gimbal axes (what rate_on_gimbal_rad_s()
+// publishes) is not representable. Over a grid of such rates and starting attitudes, every step
+// publishes a finite rate or is refused with its state bit-identical.
+TYPED_TEST(GyroBadInput, GivenRatesWhoseTurnOntoTheGimbalOverflowsThenNumericalOverflowAndStateBitIdentical) {
+  GYRO_VERIFIES("MODEL-6");
+  using T = TypeParam;
+  const T big = std::numeric_limits<T>::max();
+  const GyroStepInput<T> in = step_input<T>(T(1e-4));
+  int accepted = 0, refused = 0;
+  for (int i = 0; i < 12; ++i) {
+    for (int j = 0; j < 12; ++j) {
+      for (int k = 0; k < 4; ++k) {
+        const Vector2<T> rate(T(0.18 * i - 0.99) * big, T(0.18 * j - 0.99) * big);
+        const Vector2<T> offset(T(0.07 * k - 0.1), T(0.2 - 0.09 * k));
+        GyroModel<T> g = uncaged_model<T>(test_config<T>(), rate, offset);
+        const Observed<T> before = observe(g);
+        const Status s = g.step_torque(in, Vector2<T>::Zero());
+        if (s == Status::kOk) {
+          EXPECT_TRUE(all_finite(g.rate_on_gimbal_rad_s())) << i << " " << j << " " << k;
+          ++accepted;
+        } else {
+          EXPECT_EQ(s, Status::kNumericalOverflow);
+          EXPECT_TRUE(bit_identical(before, observe(g))) << i << " " << j << " " << k;
+          ++refused;
+        }
+      }
+    }
+  }
+  EXPECT_GT(accepted, 0);
+  EXPECT_GT(refused, 0);
+}
+
 // Without spin a finite torque accelerates the gimbals freely (w' = T/J): over 100 s the
 // largest torque overflows the rates inside the exact step.
 TYPED_TEST(GyroBadInput, GivenNoSpinAndLargestTorqueOver100sThenNumericalOverflowAndStateBitIdentical) {

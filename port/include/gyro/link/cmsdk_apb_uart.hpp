@@ -15,9 +15,9 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 
 #include "gyro/link/byte_link.hpp"
+#include "gyro/link/saturating_count.hpp"
 
 namespace gyro::link {
 
@@ -62,7 +62,7 @@ class CmsdkApbUart final : public ByteLink {  // NOLINT(cppcoreguidelines-virtua
     const std::uint32_t state = regs_.state;
     if ((state & kRxOverrun) != 0u) {
       regs_.state = kRxOverrun;  // write one to clear; a byte was lost before this one
-      if (rx_overruns_ != std::numeric_limits<std::uint32_t>::max()) ++rx_overruns_;
+      rx_overruns_ = saturating_increment(rx_overruns_);
     }
     if ((state & kRxFull) == 0u) return false;
     out = static_cast<std::uint8_t>(regs_.data & 0xFFu);

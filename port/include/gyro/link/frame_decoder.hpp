@@ -17,10 +17,10 @@
 
 #include <array>
 #include <cstdint>
-#include <limits>
 
 #include "gyro/link/crc16.hpp"
 #include "gyro/link/frame.hpp"
+#include "gyro/link/saturating_count.hpp"
 
 namespace gyro::link {
 
@@ -118,9 +118,7 @@ class FrameDecoder {
   [[nodiscard]] const DecoderCounters& counters() const noexcept { return counters_; }
 
  private:
-  static void bump(std::uint32_t& c) noexcept {
-    if (c != std::numeric_limits<std::uint32_t>::max()) ++c;
-  }
+  static void bump(std::uint32_t& c) noexcept { c = saturating_increment(c); }
   void skip(std::size_t n) noexcept {
     begin_ += n;
     need_ = 0;

@@ -21,12 +21,12 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 
 #include "gyro/gyro_port.hpp"
 #include "gyro/link/byte_link.hpp"
 #include "gyro/link/frame_decoder.hpp"
 #include "gyro/link/gyro_link_messages.hpp"
+#include "gyro/link/saturating_count.hpp"
 
 namespace gyro {
 
@@ -103,9 +103,7 @@ class LinkGyroPort final : public GyroPort<T> {
     PickoffReading<T> newest{};
   };
 
-  static void bump(std::uint32_t& c) noexcept {
-    if (c != std::numeric_limits<std::uint32_t>::max()) ++c;
-  }
+  static void bump(std::uint32_t& c) noexcept { c = link::saturating_increment(c); }
 
   [[nodiscard]] PortStatus refuse_torque() noexcept {
     bump(counters_.torque_refused);

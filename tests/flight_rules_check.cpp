@@ -100,6 +100,7 @@ template BodySample<double> turning_body<double>(const Matrix3<double>&, const V
 #include "gyro/link/frame_decoder.hpp"
 #include "gyro/link/gyro_link_messages.hpp"
 #include "gyro/link/link_gyro_port.hpp"
+#include "gyro/link/saturating_count.hpp"
 #include "gyro/link/wire.hpp"
 #include "gyro/rate_group.hpp"
 
